@@ -1,0 +1,379 @@
+//! Fixed-point vectors and matrices of the pipeline.
+//!
+//! Three formats carry geometry through the kernel; each one's range and
+//! precision is stated here, with the reason no product or sum made from it
+//! overflows.
+//!
+//! | type | storage | format | range | resolution |
+//! | --- | --- | --- | --- | --- |
+//! | [`Vec3`] (positions, object/world/eye space) | `i32` ×3 | `I8F24` | [−128, 128) | 2⁻²⁴ ≈ 6·10⁻⁸ |
+//! | [`Unit3`] (unit normals, light and view directions) | `i16` ×3 | `I2F14` | [−1, 1] (invariant) | 2⁻¹⁴ ≈ 6·10⁻⁵ |
+//! | [`Mat4`] entries (model, view transforms) | `i32` | `I8F24` | [−128, 128) | 2⁻²⁴ |
+//!
+//! Why `I8F24` for positions: a light 10⁻³ units from a surface must still
+//! give a direction good to 10⁻⁴ (`2⁻²⁴ / 10⁻³ ≈ 6·10⁻⁵`), while the
+//! standard scenes (bunny included) fit in ±128 units. Positions outside that
+//! range are rejected when a float is converted ([`Vec3::from_f32`]) and
+//! saturate where a transform produces them.
+//!
+//! Why `I2F14` in an `i16` for unit vectors: a dot product of two of them is a
+//! sum of three 16 × 16 → 32-bit products, one instruction each on a
+//! Cortex-M0. Each component is at most 2¹⁴ in magnitude (the invariant of
+//! [`Unit3`]), so each product is at most 2²⁸ and the sum of three at most
+//! 3·2²⁸ < 2³¹: no overflow in `i32`.
+//!
+//! Products of `I8F24` values go through `i64`: `|a·b| < 2⁷·2⁷ = 2¹⁴` in
+//! value, `2⁶²` in raw units, and a sum of four such products stays below
+//! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
+//! of values that are each below 2⁷ and saturates the result to `I8F24`.
+
+use fixed::types::{I2F14, I8F24};
+
+/// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
+pub const UNIT_ONE: i16 = 1 << 14;
+
+/// Fractional bits of the `I8F24` position format.
+pub const COORD_FRAC: u32 = 24;
+
+/// A position or displacement, three `I8F24` components.
+///
+/// Range [−128, 128) per component, resolution 2⁻²⁴.
+///
+/// ```
+/// use fixshade::Vec3;
+/// let p = Vec3::from_f32(1.0, -2.5, 0.25).unwrap();
+/// assert_eq!(p.to_f32(), [1.0, -2.5, 0.25]);
+/// assert!(Vec3::from_f32(200.0, 0.0, 0.0).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Vec3 {
+    /// x component.
+    pub x: I8F24,
+    /// y component.
+    pub y: I8F24,
+    /// z component.
+    pub z: I8F24,
+}
+
+/// Why a float could not become a fixed-point value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FormatError {
+    /// The value was NaN or infinite.
+    NotFinite,
+    /// The value lies outside the format's range.
+    OutOfRange,
+}
+
+impl core::fmt::Display for FormatError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            FormatError::NotFinite => f.write_str("value is NaN or infinite"),
+            FormatError::OutOfRange => f.write_str("value outside the fixed-point range"),
+        }
+    }
+}
+
+/// Converts an `f32` to `I8F24`, rounding to nearest; errors for NaN, ±∞ and
+/// values outside [−128, 128).
+pub fn coord_from_f32(v: f32) -> Result<I8F24, FormatError> {
+    if !v.is_finite() {
+        return Err(FormatError::NotFinite);
+    }
+    I8F24::checked_from_num(v).ok_or(FormatError::OutOfRange)
+}
+
+impl Vec3 {
+    /// The origin.
+    pub const ZERO: Vec3 = Vec3::from_bits(0, 0, 0);
+
+    /// Builds a vector from raw `I8F24` bits (usable in `const` and `static`
+    /// mesh data).
+    ///
+    /// ```
+    /// use fixshade::Vec3;
+    /// const ONE_X: Vec3 = Vec3::from_bits(1 << 24, 0, 0);
+    /// assert_eq!(ONE_X.to_f32(), [1.0, 0.0, 0.0]);
+    /// ```
+    pub const fn from_bits(x: i32, y: i32, z: i32) -> Self {
+        Vec3 {
+            x: I8F24::from_bits(x),
+            y: I8F24::from_bits(y),
+            z: I8F24::from_bits(z),
+        }
+    }
+
+    /// Builds a vector from floats; see [`coord_from_f32`] for the errors.
+    pub fn from_f32(x: f32, y: f32, z: f32) -> Result<Self, FormatError> {
+        Ok(Vec3 {
+            x: coord_from_f32(x)?,
+            y: coord_from_f32(y)?,
+            z: coord_from_f32(z)?,
+        })
+    }
+
+    /// The raw `I8F24` bits of the three components.
+    pub const fn to_bits(self) -> [i32; 3] {
+        [self.x.to_bits(), self.y.to_bits(), self.z.to_bits()]
+    }
+
+    /// The components as `f32` (host-side inspection).
+    pub fn to_f32(self) -> [f32; 3] {
+        [self.x.to_num(), self.y.to_num(), self.z.to_num()]
+    }
+}
+
+/// A unit vector: three `I2F14` components whose length is 1 to within the
+/// rounding of each component.
+///
+/// Invariant: every component lies in [−2¹⁴, 2¹⁴] raw, i.e. [−1, 1]. The only
+/// ways to make one are [`Unit3::new_clamped`] (which enforces the bound), the
+/// normalisation functions of [`crate::normalize`], and the axis constants.
+///
+/// ```
+/// use fixshade::Unit3;
+/// let z = Unit3::Z;
+/// assert_eq!(z.dot(Unit3::Z), 1 << 28);
+/// assert_eq!(z.neg().to_bits(), [0, 0, -(1 << 14)]);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Unit3 {
+    c: [i16; 3],
+}
+
+impl Unit3 {
+    /// +X.
+    pub const X: Unit3 = Unit3 { c: [UNIT_ONE, 0, 0] };
+    /// +Y.
+    pub const Y: Unit3 = Unit3 { c: [0, UNIT_ONE, 0] };
+    /// +Z (the infinite viewer's direction in eye space).
+    pub const Z: Unit3 = Unit3 { c: [0, 0, UNIT_ONE] };
+    /// The zero vector: what normalising a zero-length vector gives in the
+    /// places where SPEC.md makes the term it feeds 0.
+    pub const ZERO: Unit3 = Unit3 { c: [0, 0, 0] };
+
+    /// Builds a unit vector from raw `I2F14` bits, clamping each component
+    /// to [−2¹⁴, 2¹⁴]. The caller is responsible for the length being 1; the
+    /// clamp only guarantees the overflow invariant.
+    pub const fn new_clamped(x: i16, y: i16, z: i16) -> Self {
+        const fn cl(v: i16) -> i16 {
+            if v > UNIT_ONE {
+                UNIT_ONE
+            } else if v < -UNIT_ONE {
+                -UNIT_ONE
+            } else {
+                v
+            }
+        }
+        Unit3 {
+            c: [cl(x), cl(y), cl(z)],
+        }
+    }
+
+    /// The raw `I2F14` bits.
+    pub const fn to_bits(self) -> [i16; 3] {
+        self.c
+    }
+
+    /// The components as fixed-point numbers.
+    pub fn to_fixed(self) -> [I2F14; 3] {
+        self.c.map(I2F14::from_bits)
+    }
+
+    /// Whether this is the zero vector (a normalisation of nothing).
+    pub const fn is_zero(self) -> bool {
+        self.c[0] == 0 && self.c[1] == 0 && self.c[2] == 0
+    }
+
+    /// The opposite direction (the invariant is symmetric, so this cannot
+    /// overflow).
+    pub const fn neg(self) -> Self {
+        Unit3 {
+            c: [-self.c[0], -self.c[1], -self.c[2]],
+        }
+    }
+
+    /// Dot product in `Q.28` (1.0 = 2²⁸). Three 16 × 16 → 32-bit products;
+    /// no overflow by the invariant (see the module docs).
+    #[inline]
+    pub const fn dot(self, o: Unit3) -> i32 {
+        self.c[0] as i32 * o.c[0] as i32
+            + self.c[1] as i32 * o.c[1] as i32
+            + self.c[2] as i32 * o.c[2] as i32
+    }
+
+    /// `|a − b|² / 2` in `Q.28`, which for unit vectors equals `1 − a·b`.
+    ///
+    /// Computed from the difference vector, this keeps its relative precision
+    /// as the angle goes to 0, where `1 − a·b` from a rounded dot product
+    /// would be swamped by the rounding of the vectors' lengths. It is what
+    /// steep powers (`x^2048`) need. Each difference is at most 2¹⁵, each
+    /// square 2³⁰, the sum of three below 2³² (`u32`), halved below 2³¹.
+    #[inline]
+    pub const fn half_dist_sq(self, o: Unit3) -> u32 {
+        let dx = (self.c[0] as i32 - o.c[0] as i32).unsigned_abs();
+        let dy = (self.c[1] as i32 - o.c[1] as i32).unsigned_abs();
+        let dz = (self.c[2] as i32 - o.c[2] as i32).unsigned_abs();
+        (dx * dx + dy * dy + dz * dz) >> 1
+    }
+
+    /// The raw components widened to `i32`.
+    #[inline]
+    pub(crate) const fn raw_i32(self) -> [i32; 3] {
+        [self.c[0] as i32, self.c[1] as i32, self.c[2] as i32]
+    }
+}
+
+/// A 4 × 4 affine or projective matrix with `I8F24` entries, row-major;
+/// applied to column vectors (`p' = M · p`).
+///
+/// ```
+/// use fixshade::{Mat4, Vec3};
+/// let m = Mat4::translation(Vec3::from_f32(1.0, 2.0, 3.0).unwrap());
+/// let p = m.transform_point(Vec3::from_f32(0.5, 0.5, 0.5).unwrap());
+/// assert_eq!(p.to_f32(), [1.5, 2.5, 3.5]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Mat4 {
+    /// Entries as raw `I8F24`, `m[row][col]`.
+    pub m: [[i32; 4]; 4],
+}
+
+const ONE24: i32 = 1 << COORD_FRAC;
+
+impl Default for Mat4 {
+    fn default() -> Self {
+        Mat4::IDENTITY
+    }
+}
+
+impl Mat4 {
+    /// The identity.
+    pub const IDENTITY: Mat4 = Mat4 {
+        m: [
+            [ONE24, 0, 0, 0],
+            [0, ONE24, 0, 0],
+            [0, 0, ONE24, 0],
+            [0, 0, 0, ONE24],
+        ],
+    };
+
+    /// A translation by `t`.
+    pub const fn translation(t: Vec3) -> Mat4 {
+        let mut m = Mat4::IDENTITY;
+        m.m[0][3] = t.x.to_bits();
+        m.m[1][3] = t.y.to_bits();
+        m.m[2][3] = t.z.to_bits();
+        m
+    }
+
+    /// Builds a matrix from `f32` entries (row-major); errors as
+    /// [`coord_from_f32`].
+    pub fn from_f32(rows: [[f32; 4]; 4]) -> Result<Mat4, FormatError> {
+        let mut m = [[0i32; 4]; 4];
+        for (r, row) in rows.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                m[r][c] = coord_from_f32(*v)?.to_bits();
+            }
+        }
+        Ok(Mat4 { m })
+    }
+
+    /// The product `self · o`, saturating each entry to `I8F24`.
+    pub fn mul(&self, o: &Mat4) -> Mat4 {
+        let mut m = [[0i32; 4]; 4];
+        for (r, row) in m.iter_mut().enumerate() {
+            for (c, out) in row.iter_mut().enumerate() {
+                let mut acc: i64 = 0;
+                for k in 0..4 {
+                    // |a|,|b| < 2^31 raw, product < 2^62; four of them can
+                    // reach 2^64, so accumulate saturating.
+                    acc = acc.saturating_add(self.m[r][k] as i64 * o.m[k][c] as i64);
+                }
+                *out = sat_shift24(acc);
+            }
+        }
+        Mat4 { m }
+    }
+
+    /// Applies the affine part (rows 0..3) to a point (w = 1), saturating the
+    /// result to `I8F24`.
+    #[inline]
+    pub fn transform_point(&self, p: Vec3) -> Vec3 {
+        let b = p.to_bits();
+        let row = |r: usize| {
+            let m = &self.m[r];
+            // Each product < 2^62 raw; three plus the translation (< 2^55
+            // after the shift up) are summed saturating.
+            let acc = (m[0] as i64 * b[0] as i64)
+                .saturating_add(m[1] as i64 * b[1] as i64)
+                .saturating_add(m[2] as i64 * b[2] as i64)
+                .saturating_add((m[3] as i64) << COORD_FRAC);
+            sat_shift24(acc)
+        };
+        Vec3::from_bits(row(0), row(1), row(2))
+    }
+
+    /// Applies the 3 × 3 linear part to a direction (w = 0), returning raw
+    /// `i64` sums in the input's units times 2²⁴ (no rounding, no overflow:
+    /// each product is below 2⁶², three of them below 2⁶³·1.5, summed
+    /// saturating).
+    #[inline]
+    pub fn transform_dir_wide(&self, d: [i32; 3]) -> [i64; 3] {
+        let row = |r: usize| {
+            let m = &self.m[r];
+            (m[0] as i64 * d[0] as i64)
+                .saturating_add(m[1] as i64 * d[1] as i64)
+                .saturating_add(m[2] as i64 * d[2] as i64)
+        };
+        [row(0), row(1), row(2)]
+    }
+}
+
+/// Rounds an `i64` in `Q.48` to `Q.24` and saturates it to `i32`.
+#[inline]
+pub(crate) fn sat_shift24(acc: i64) -> i32 {
+    let r = (acc >> (COORD_FRAC - 1)).saturating_add(1) >> 1;
+    r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+}
+
+/// The inverse transpose of the 3 × 3 linear part of `m`, scaled so that its
+/// largest entry is below 1 in magnitude, as `I2F14` (`i16`) entries: the
+/// matrix that takes normals to eye space (SPEC.md 1). The scale is free
+/// because the result is renormalised.
+///
+/// Returns `None` for a singular matrix.
+pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
+    // Cofactor matrix of the 3x3 part = det · inverse-transpose. Entries of
+    // m are < 2^31 raw; a 2x2 minor needs i128 to stay exact.
+    let a = |r: usize, c: usize| m.m[r][c] as i128;
+    let mut cof = [[0i128; 3]; 3];
+    for (r, row) in cof.iter_mut().enumerate() {
+        for (c, out) in row.iter_mut().enumerate() {
+            let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
+            let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
+            *out = a(r1, c1) * a(r2, c2) - a(r1, c2) * a(r2, c1);
+        }
+    }
+    let det = a(0, 0) * cof[0][0] + a(0, 1) * cof[0][1] + a(0, 2) * cof[0][2];
+    if det == 0 {
+        return None;
+    }
+    // Inverse-transpose = cof / det. Dividing by |det| would only scale; we
+    // keep the sign of det (so a mirror flips normals) and scale the largest
+    // entry to just below 2^14.
+    let sign: i128 = if det < 0 { -1 } else { 1 };
+    let max = cof.iter().flatten().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    if max == 0 {
+        return None;
+    }
+    let mut out = [[0i16; 3]; 3];
+    for r in 0..3 {
+        for c in 0..3 {
+            // (v << 14) / max with |v| <= max: result in [-2^14, 2^14].
+            let v = cof[r][c] * sign;
+            let q = (v * (1i128 << 14)) / max as i128;
+            out[r][c] = q as i16;
+        }
+    }
+    Some(out)
+}
