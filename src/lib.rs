@@ -2,6 +2,21 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
+pub mod camera;
+pub mod color;
+pub mod depth;
+pub mod framebuffer;
+pub mod illumination;
+pub mod light;
+pub mod material;
+pub mod mesh;
+pub mod normalize;
+pub mod rasterizer;
+pub mod render;
+pub mod specular_table;
 pub mod vector;
 
+pub use color::{Rgb, Shade};
+pub use illumination::Lighting;
+pub use material::Material;
 pub use vector::{Mat4, Unit3, Vec3};

@@ -142,11 +142,17 @@ pub struct Unit3 {
 
 impl Unit3 {
     /// +X.
-    pub const X: Unit3 = Unit3 { c: [UNIT_ONE, 0, 0] };
+    pub const X: Unit3 = Unit3 {
+        c: [UNIT_ONE, 0, 0],
+    };
     /// +Y.
-    pub const Y: Unit3 = Unit3 { c: [0, UNIT_ONE, 0] };
+    pub const Y: Unit3 = Unit3 {
+        c: [0, UNIT_ONE, 0],
+    };
     /// +Z (the infinite viewer's direction in eye space).
-    pub const Z: Unit3 = Unit3 { c: [0, 0, UNIT_ONE] };
+    pub const Z: Unit3 = Unit3 {
+        c: [0, 0, UNIT_ONE],
+    };
     /// The zero vector: what normalising a zero-length vector gives in the
     /// places where SPEC.md makes the term it feeds 0.
     pub const ZERO: Unit3 = Unit3 { c: [0, 0, 0] };
@@ -215,12 +221,6 @@ impl Unit3 {
         let dz = (self.c[2] as i32 - o.c[2] as i32).unsigned_abs();
         (dx * dx + dy * dy + dz * dz) >> 1
     }
-
-    /// The raw components widened to `i32`.
-    #[inline]
-    pub(crate) const fn raw_i32(self) -> [i32; 3] {
-        [self.c[0] as i32, self.c[1] as i32, self.c[2] as i32]
-    }
 }
 
 /// A 4 × 4 affine or projective matrix with `I8F24` entries, row-major;
@@ -273,6 +273,23 @@ impl Mat4 {
         for (r, row) in rows.iter().enumerate() {
             for (c, v) in row.iter().enumerate() {
                 m[r][c] = coord_from_f32(*v)?.to_bits();
+            }
+        }
+        Ok(Mat4 { m })
+    }
+
+    /// Builds a matrix from `f64` entries (row-major), rounding to nearest;
+    /// errors as [`coord_from_f32`].
+    pub fn from_f64(rows: [[f64; 4]; 4]) -> Result<Mat4, FormatError> {
+        let mut m = [[0i32; 4]; 4];
+        for (r, row) in rows.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                if !v.is_finite() {
+                    return Err(FormatError::NotFinite);
+                }
+                m[r][c] = I8F24::checked_from_num(*v)
+                    .ok_or(FormatError::OutOfRange)?
+                    .to_bits();
             }
         }
         Ok(Mat4 { m })
@@ -362,7 +379,12 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     // keep the sign of det (so a mirror flips normals) and scale the largest
     // entry to just below 2^14.
     let sign: i128 = if det < 0 { -1 } else { 1 };
-    let max = cof.iter().flatten().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    let max = cof
+        .iter()
+        .flatten()
+        .map(|v| v.unsigned_abs())
+        .max()
+        .unwrap_or(0);
     if max == 0 {
         return None;
     }

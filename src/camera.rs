@@ -1,0 +1,290 @@
+//! The camera: a look-at view and an OpenGL perspective or orthographic
+//! projection (SPEC.md 1).
+//!
+//! The view matrix is `I8F24` like every [`Mat4`]. The projection is kept
+//! as its few non-zero coefficients in `Q.24` `i64` (it is applied to
+//! eye-space positions, which are `I8F24`, giving clip coordinates in
+//! `I40F24`: at most `2³¹ · 2⁷ ≈ 2³⁸` raw for a coefficient below 2⁷).
+
+use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
+
+/// Why a camera could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CameraError {
+    /// A number was NaN or infinite.
+    NotFinite,
+    /// A position outside the `I8F24` range.
+    OutOfRange,
+    /// `eye == target`, or `up` parallel to the view direction.
+    Degenerate,
+    /// `near ≤ 0`, `far ≤ near`, a field of view outside (0°, 180°), or a
+    /// non-positive orthographic height.
+    BadProjection,
+}
+
+impl From<FormatError> for CameraError {
+    fn from(e: FormatError) -> Self {
+        match e {
+            FormatError::NotFinite => CameraError::NotFinite,
+            FormatError::OutOfRange => CameraError::OutOfRange,
+        }
+    }
+}
+
+impl core::fmt::Display for CameraError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            CameraError::NotFinite => "camera parameter is NaN or infinite",
+            CameraError::OutOfRange => "camera position outside [-128, 128)",
+            CameraError::Degenerate => "camera eye equals target, or up is parallel to the view",
+            CameraError::BadProjection => "bad projection (near, far, field of view or height)",
+        })
+    }
+}
+
+/// Which projection, with its parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// OpenGL perspective: vertical field of view in degrees.
+    Perspective {
+        /// Vertical field of view, degrees, in (0, 180).
+        fovy_deg: f32,
+    },
+    /// OpenGL orthographic: the view volume's height in eye units (its
+    /// width follows the viewport's aspect ratio).
+    Orthographic {
+        /// Height of the view volume.
+        height: f32,
+    },
+}
+
+/// A camera: view matrix plus projection parameters.
+///
+/// ```
+/// use fixshade::camera::{Camera, Projection};
+/// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0])
+///     .unwrap()
+///     .with_projection(Projection::Perspective { fovy_deg: 60.0 }, 0.1, 10.0)
+///     .unwrap();
+/// let p = cam.projection_for(320, 240).unwrap();
+/// assert!(p.is_perspective());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// World → eye.
+    pub view: Mat4,
+    /// The projection.
+    pub projection: Projection,
+    /// Near plane distance.
+    pub near: f32,
+    /// Far plane distance.
+    pub far: f32,
+}
+
+impl Camera {
+    /// A look-at view (gluLookAt) with a default 60° perspective, near 0.1,
+    /// far 10.
+    pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Camera, CameraError> {
+        if eye.iter().chain(&target).chain(&up).any(|v| !v.is_finite()) {
+            return Err(CameraError::NotFinite);
+        }
+        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let cross = |a: [f64; 3], b: [f64; 3]| {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let unit = |v: [f64; 3]| -> Result<[f64; 3], CameraError> {
+            let len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            if !(len > 1e-12) || !len.is_finite() {
+                return Err(CameraError::Degenerate);
+            }
+            Ok([v[0] / len, v[1] / len, v[2] / len])
+        };
+        let (eye, target, up) = (eye.map(f64::from), target.map(f64::from), up.map(f64::from));
+        let f = unit(sub(target, eye))?;
+        let s = unit(cross(f, unit(up)?))?;
+        let u = cross(s, f);
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let view = Mat4::from_f64([
+            [s[0], s[1], s[2], -dot(s, eye)],
+            [u[0], u[1], u[2], -dot(u, eye)],
+            [-f[0], -f[1], -f[2], dot(f, eye)],
+            [0.0, 0.0, 0.0, 1.0],
+        ])?;
+        Ok(Camera {
+            view,
+            projection: Projection::Perspective { fovy_deg: 60.0 },
+            near: 0.1,
+            far: 10.0,
+        })
+    }
+
+    /// A camera with a given view matrix and the default projection.
+    pub const fn from_view(view: Mat4) -> Camera {
+        Camera {
+            view,
+            projection: Projection::Perspective { fovy_deg: 60.0 },
+            near: 0.1,
+            far: 10.0,
+        }
+    }
+
+    /// Sets the projection and the near and far planes.
+    pub fn with_projection(
+        mut self,
+        projection: Projection,
+        near: f32,
+        far: f32,
+    ) -> Result<Camera, CameraError> {
+        let ok = match projection {
+            Projection::Perspective { fovy_deg } => fovy_deg > 0.0 && fovy_deg < 180.0,
+            Projection::Orthographic { height } => height > 0.0 && height.is_finite(),
+        };
+        if !near.is_finite() || !far.is_finite() {
+            return Err(CameraError::NotFinite);
+        }
+        if !ok || !(near > 0.0) || !(far > near) || far >= 128.0 {
+            return Err(CameraError::BadProjection);
+        }
+        self.projection = projection;
+        self.near = near;
+        self.far = far;
+        Ok(self)
+    }
+
+    /// The projection's coefficients for a viewport of `width × height`
+    /// pixels (aspect = width / height; a zero size counts as 1).
+    ///
+    /// Errors with [`CameraError::BadProjection`] where a coefficient would
+    /// reach 127 in value (a field of view under about 1°, an extreme
+    /// aspect ratio, or `far` within 1% of `near`): [`ProjectionCoeffs::clip`]
+    /// relies on them being below 2⁷.
+    pub fn projection_for(&self, width: u32, height: u32) -> Result<ProjectionCoeffs, CameraError> {
+        let p = self.coeffs(width, height);
+        let lim = 127u32 << COORD_FRAC;
+        if [p.sx, p.sy, p.a, p.b]
+            .iter()
+            .any(|c| c.unsigned_abs() > lim)
+        {
+            return Err(CameraError::BadProjection);
+        }
+        Ok(p)
+    }
+
+    fn coeffs(&self, width: u32, height: u32) -> ProjectionCoeffs {
+        let aspect = width.max(1) as f64 / height.max(1) as f64;
+        let (n, f) = (self.near as f64, self.far as f64);
+        let q = |v: f64| -> i32 {
+            let s = v * (1u64 << COORD_FRAC) as f64;
+            let s = if s >= 0.0 { s + 0.5 } else { s - 0.5 };
+            s.clamp(i32::MIN as f64, i32::MAX as f64) as i32
+        };
+        match self.projection {
+            Projection::Perspective { fovy_deg } => {
+                let half = fovy_deg as f64 * core::f64::consts::PI / 360.0;
+                let fl = cos_over_sin(half);
+                ProjectionCoeffs {
+                    sx: q(fl / aspect),
+                    sy: q(fl),
+                    tx: 0,
+                    ty: 0,
+                    a: q((f + n) / (n - f)),
+                    b: q(2.0 * f * n / (n - f)),
+                    perspective: true,
+                }
+            }
+            Projection::Orthographic { height } => {
+                let h = height as f64;
+                let w = h * aspect;
+                ProjectionCoeffs {
+                    sx: q(2.0 / w),
+                    sy: q(2.0 / h),
+                    tx: 0,
+                    ty: 0,
+                    a: q(-2.0 / (f - n)),
+                    b: q(-(f + n) / (f - n)),
+                    perspective: false,
+                }
+            }
+        }
+    }
+}
+
+/// `√x` in `f64` to the last bit or so: Newton's iteration from a guess
+/// made by halving the exponent (no libm in `no_std`; used once per frame).
+fn sqrt(x: f64) -> f64 {
+    if !(x > 0.0) || !x.is_finite() {
+        return if x == 0.0 { 0.0 } else { f64::NAN };
+    }
+    let mut g = f64::from_bits((x.to_bits() >> 1) + (1023u64 << 51));
+    for _ in 0..6 {
+        g = 0.5 * (g + x / g);
+    }
+    g
+}
+
+/// `cos x / sin x` for `x` in (0, π/2), by Taylor series (no libm in
+/// `no_std`; called once per frame).
+fn cos_over_sin(x: f64) -> f64 {
+    let (mut s, mut c) = (0.0, 0.0);
+    let (mut ts, mut tc) = (x, 1.0);
+    for k in 1..20 {
+        s += ts;
+        c += tc;
+        ts *= -x * x / ((2 * k) as f64 * (2 * k + 1) as f64);
+        tc *= -x * x / ((2 * k - 1) as f64 * (2 * k) as f64);
+    }
+    c / s
+}
+
+/// The non-zero coefficients of an OpenGL projection matrix in `Q.24`:
+/// `x_c = sx·x + tx`, `y_c = sy·y + ty`, `z_c = a·z + b·w`,
+/// `w_c = −z` (perspective) or `1` (orthographic).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ProjectionCoeffs {
+    /// `P[0][0]`.
+    pub sx: i32,
+    /// `P[1][1]`.
+    pub sy: i32,
+    /// `P[0][3]` (0 for a centred view).
+    pub tx: i32,
+    /// `P[1][3]`.
+    pub ty: i32,
+    /// `P[2][2]`.
+    pub a: i32,
+    /// `P[2][3]`.
+    pub b: i32,
+    /// Perspective (`w_c = −z_e`) or orthographic (`w_c = 1`).
+    pub perspective: bool,
+}
+
+impl ProjectionCoeffs {
+    /// Whether this is a perspective projection.
+    pub const fn is_perspective(&self) -> bool {
+        self.perspective
+    }
+
+    /// Clip coordinates `[x, y, z, w]` (`I40F24` raw) of an eye-space point.
+    /// Coefficients are below 2⁷ in value (2³¹ raw, checked by
+    /// [`Camera::with_projection`]) and coordinates below 2³¹ raw, so each
+    /// product is below 2⁶² and the sums below 2⁶³.
+    #[inline]
+    pub fn clip(&self, e: Vec3) -> [i64; 4] {
+        let b = e.to_bits();
+        let mul = |c: i32, v: i32| (c as i64 * v as i64 + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
+        let w = if self.perspective {
+            -(b[2] as i64)
+        } else {
+            1i64 << COORD_FRAC
+        };
+        [
+            mul(self.sx, b[0]) + self.tx as i64,
+            mul(self.sy, b[1]) + self.ty as i64,
+            mul(self.a, b[2]) + self.b as i64,
+            w,
+        ]
+    }
+}

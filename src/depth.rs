@@ -1,0 +1,102 @@
+//! The optional depth buffer, in storage the caller provides.
+//!
+//! Depth is `z_w` (SPEC.md 1) quantised to `u16`: `z16 = ⌊z_w · 65536⌋`
+//! clamped to 65535, cleared to 65535 (`z_w = 1`); a pixel is drawn where
+//! its `z16` is less than the stored one (SPEC.md 5), and then stored. A
+//! scene that needs no depth test uses [`NoDepth`], which has no storage
+//! and whose test the compiler removes.
+
+/// A depth test: [`NoDepth`] or [`DepthBuffer`].
+pub trait DepthTest {
+    /// Whether there is a test at all.
+    const ENABLED: bool;
+    /// The stored depths of row `y` from column `x0`, `len` of them, or an
+    /// empty slice for [`NoDepth`].
+    fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16];
+}
+
+/// No depth test: every pixel is drawn, later triangles over earlier ones.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct NoDepth;
+
+impl DepthTest for NoDepth {
+    const ENABLED: bool = false;
+    #[inline(always)]
+    fn row(&mut self, _: u32, _: u32, _: u32) -> &mut [u16] {
+        &mut []
+    }
+}
+
+/// Why a depth buffer could not be made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DepthBufferTooSmall;
+
+impl core::fmt::Display for DepthBufferTooSmall {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("depth buffer shorter than width × height")
+    }
+}
+
+/// A depth buffer of `width × height` `u16`s, row-major, borrowed.
+///
+/// ```
+/// use fixshade::depth::DepthBuffer;
+/// let mut storage = [0u16; 4 * 3];
+/// let mut depth = DepthBuffer::new(&mut storage, 4, 3).unwrap();
+/// depth.clear();
+/// assert!(DepthBuffer::new(&mut [0u16; 5], 4, 3).is_err());
+/// ```
+#[derive(Debug, PartialEq, Eq)]
+pub struct DepthBuffer<'a> {
+    buf: &'a mut [u16],
+    width: u32,
+    height: u32,
+}
+
+impl<'a> DepthBuffer<'a> {
+    /// Wraps `buf`, which must hold at least `width · height` values.
+    pub fn new(buf: &'a mut [u16], width: u32, height: u32) -> Result<Self, DepthBufferTooSmall> {
+        let need = width as u64 * height as u64;
+        if (buf.len() as u64) < need {
+            return Err(DepthBufferTooSmall);
+        }
+        Ok(DepthBuffer { buf, width, height })
+    }
+
+    /// Sets every depth to the far value (65535).
+    pub fn clear(&mut self) {
+        let n = (self.width as usize) * (self.height as usize);
+        self.buf[..n].fill(u16::MAX);
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The stored depths, row-major.
+    pub fn as_slice(&self) -> &[u16] {
+        &self.buf[..(self.width as usize) * (self.height as usize)]
+    }
+}
+
+impl DepthTest for DepthBuffer<'_> {
+    const ENABLED: bool = true;
+    /// Out-of-range requests give the part that exists (possibly empty);
+    /// the renderer only asks for rows and columns inside the target, which
+    /// it checks against the buffer's size before drawing.
+    #[inline]
+    fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16] {
+        if y >= self.height || x0 >= self.width {
+            return &mut [];
+        }
+        let start = y as usize * self.width as usize + x0 as usize;
+        let len = len.min(self.width - x0) as usize;
+        &mut self.buf[start..start + len]
+    }
+}

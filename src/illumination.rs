@@ -1,0 +1,319 @@
+//! The illumination equation of SPEC.md section 3, per RGB channel, in fixed
+//! point.
+//!
+//! ```text
+//! I_c = E_c + A_c·Ka_c + Σ_i s_i·f_i·( Id_ic·Kd_c·max(N·L_i, 0) + Is_ic·Ks_c·spec_i )
+//! ```
+//!
+//! # How the arithmetic is laid out
+//! - `E + A·Ka` is one constant per frame ([`Lighting::new`]).
+//! - The products `Id·Kd` and `Is·Ks` are constants per light and frame,
+//!   prepared once as a [`Gain`]: a 16-bit mantissa and a shift, so that a
+//!   gain of 0.001 keeps as many significant bits as a gain of 100.
+//! - Per vertex (or per pixel, in Phong shading) and per light, the factors
+//!   `max(N·L, 0)`, `spec`, `s` and `f` are `Q.15` numbers in [0, 1]
+//!   (`u32`, at most 2¹⁵). A product of two factors is at most 2³⁰; a gain
+//!   applied to a factor is `mantissa · factor ≤ (2¹⁶ − 1)·2¹⁵ < 2³¹`, then
+//!   shifted. All are 32 × 32 → 32-bit multiplies: one instruction on a
+//!   Cortex-M0.
+//! - The sum is a `Q.16` `u32` per channel, added with saturation (every
+//!   term is non-negative and the result is clamped to 1 = 2¹⁶, so
+//!   saturation at 2³² − 1 is exact), then clamped to [0, 1] as a
+//!   [`Shade`].
+//!
+//! # Choosing the terms
+//! [`Lighting`] is generic over the specular term `S` (see
+//! [`crate::material`]), the viewer `V` ([`InfiniteViewer`] or
+//! [`LocalViewer`]) and the light set `L` (see [`crate::light`]). A term
+//! that the types leave out is not compiled.
+
+use core::marker::PhantomData;
+
+use crate::color::{Rgb, Shade, SHADE_ONE};
+use crate::light::LightSet;
+use crate::light::PreparedLights;
+use crate::material::{Material, Specular};
+use crate::normalize::{normalize, normalize_len};
+use crate::specular_table::{pow_from_delta, Exponent};
+use crate::vector::{Mat4, Unit3, Vec3};
+
+/// `Q.15` raw value of 1.0, the format of the per-light factors.
+pub const FACTOR_ONE: u32 = 1 << 15;
+
+/// A per-light colour gain (`Id·Kd` or `Is·Ks` of one channel), as a 16-bit
+/// mantissa and a shift: value = `mant / 2^(sh + 1)`.
+///
+/// Range: 0 and [2⁻¹⁷, 256]; products above 256 are clamped to 256 (see
+/// [`crate::color`] for why that clamp is invisible), below 2⁻¹⁷ they are 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Gain {
+    mant: u16,
+    sh: u8,
+}
+
+impl Gain {
+    /// The gain of two `U16F16` values' product, given as the exact `Q.32`
+    /// product (`u64`).
+    pub const fn from_q32(p: u64) -> Gain {
+        let p = if p > (256u64 << 32) { 256u64 << 32 } else { p };
+        if p == 0 {
+            return Gain { mant: 0, sh: 0 };
+        }
+        // bits ∈ [1, 41] since p ≤ 2^40.
+        let bits = 64 - p.leading_zeros();
+        // mant = p >> (31 − sh) should have 16 bits: sh = 47 − bits, at most 31.
+        let sh = if 47 - bits > 31 { 31 } else { 47 - bits };
+        let s = 31 - sh;
+        let m = if s == 0 {
+            p
+        } else {
+            (p + (1u64 << (s - 1))) >> s
+        };
+        if m >= 1 << 16 {
+            // Rounding carried into bit 16: halve (exact, m = 2^16) with one
+            // shift less. sh ≥ 6 here because bits ≤ 41.
+            Gain {
+                mant: (m >> 1) as u16,
+                sh: (sh - 1) as u8,
+            }
+        } else {
+            Gain {
+                mant: m as u16,
+                sh: sh as u8,
+            }
+        }
+    }
+
+    /// The gain of `a · b` for two `U16F16` raw values.
+    pub const fn of_product(a: u32, b: u32) -> Gain {
+        Gain::from_q32(a as u64 * b as u64)
+    }
+
+    /// Applies the gain to a `Q.15` factor `x ≤ 2¹⁵`, giving `Q.16`,
+    /// rounded to nearest: `mant · x < 2¹⁶·2¹⁵ = 2³¹` and the rounding half
+    /// is at most `2³⁰` (`sh ≤ 31`), so the sum stays below `2³²`. Every
+    /// caller passes a factor clamped to 2¹⁵.
+    #[inline(always)]
+    pub const fn apply(self, x: u32) -> u32 {
+        (self.mant as u32 * x + ((1u32 << self.sh) >> 1)) >> self.sh
+    }
+
+    /// The gain's value as `f64`-free rational parts: `(mant, 2^(sh+1))`.
+    pub const fn parts(self) -> (u16, u32) {
+        (self.mant, 1u32 << (self.sh as u32 + 1))
+    }
+}
+
+/// The diffuse and specular gains of one light for one material.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Gains {
+    /// `Id_c · Kd_c` per channel.
+    pub diffuse: [Gain; 3],
+    /// `Is_c · Ks_c` per channel (all zero when the material has no specular).
+    pub specular: [Gain; 3],
+}
+
+impl Gains {
+    /// The gains of a light with intensities `id`, `is` on a material with
+    /// colours `kd`, `ks`.
+    pub fn new(id: Rgb, is: Rgb, kd: Rgb, ks: Rgb) -> Gains {
+        let (id, is, kd, ks) = (id.to_bits(), is.to_bits(), kd.to_bits(), ks.to_bits());
+        Gains {
+            diffuse: [0, 1, 2].map(|c| Gain::of_product(id[c], kd[c])),
+            specular: [0, 1, 2].map(|c| Gain::of_product(is[c], ks[c])),
+        }
+    }
+}
+
+/// Where light is evaluated: a surface point and its unit normal (eye
+/// space), the direction to the viewer, and the material's shininess.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    /// Eye-space position `P`.
+    pub position: Vec3,
+    /// Unit normal `N` (eye space), already negated for a back face where
+    /// two-sided lighting asks for it.
+    pub normal: Unit3,
+    /// `V`: unit vector towards the eye, or zero where it is undefined (a
+    /// local viewer at the point itself), which turns specular off.
+    pub view: Unit3,
+    /// Shininess `n`.
+    pub shininess: Exponent,
+}
+
+/// Adds one light's contribution to `acc` (`Q.16` per channel), given the
+/// unit vector `l` towards the light and the product `sf = s·f` of the spot
+/// and attenuation factors (`Q.15`, at most 2¹⁵).
+///
+/// This is the body of the sum in SPEC.md 3, shared by every light kind.
+#[inline(always)]
+pub fn add_light<S: Specular>(ctx: &Surface, l: Unit3, sf: u32, g: &Gains, acc: &mut [u32; 3]) {
+    let nl = ctx.normal.dot(l);
+    if nl <= 0 || sf == 0 {
+        return;
+    }
+    // nl ≤ 2^28 + a few units of rounding: Q.28 → Q.15, clamped to 1.
+    let nl15 = ((nl as u32 + (1 << 12)) >> 13).min(FACTOR_ONE);
+    let diff = (nl15 * sf + (1 << 14)) >> 15;
+    for (a, gd) in acc.iter_mut().zip(g.diffuse.iter()) {
+        *a = a.saturating_add(gd.apply(diff));
+    }
+    if S::ENABLED && !ctx.view.is_zero() {
+        let Some(delta) = specular_delta::<S>(ctx, l, nl) else {
+            return;
+        };
+        let sp = pow_from_delta(delta, ctx.shininess) as u32;
+        let spec = (sp * sf + (1 << 14)) >> 15;
+        for (a, gs) in acc.iter_mut().zip(g.specular.iter()) {
+            *a = a.saturating_add(gs.apply(spec));
+        }
+    }
+}
+
+/// `1 − x` in `Q.28` for the specular base `x` (`N·H` or `R·V`), computed as
+/// half the squared distance of two unit vectors (see
+/// [`Unit3::half_dist_sq`]). `None` where `H` is undefined (`L + V = 0`).
+#[inline(always)]
+fn specular_delta<S: Specular>(ctx: &Surface, l: Unit3, nl: i32) -> Option<u32> {
+    let v = ctx.view.to_bits();
+    let lb = l.to_bits();
+    if S::BLINN {
+        let sum = [0, 1, 2].map(|i| lb[i] as i32 + v[i] as i32);
+        let h = normalize(sum)?;
+        Some(ctx.normal.half_dist_sq(h))
+    } else {
+        // R = 2(N·L)N − L. nl ≤ 2^28(1+ε); (nl >> 14) ≤ 2^14 + 1, times
+        // 2·N_i (≤ 2^15) is below 2^30; minus L_i·2^14 stays below 2^31.
+        let k = (nl + (1 << 13)) >> 14;
+        let n = ctx.normal.to_bits();
+        let r = [0, 1, 2].map(|i| {
+            let q28 = 2 * k * n[i] as i32 - ((lb[i] as i32) << 14);
+            ((q28 + (1 << 13)) >> 14).clamp(-(1 << 14), 1 << 14) as i16
+        });
+        Some(Unit3::new_clamped(r[0], r[1], r[2]).half_dist_sq(ctx.view))
+    }
+}
+
+/// Where the viewer is: selects how `V` is computed.
+pub trait Viewer: Copy + Default {
+    /// `true` for a local viewer (`V = normalise(−P)`), `false` for the
+    /// infinite viewer (`V = (0, 0, 1)`).
+    const LOCAL: bool;
+}
+
+/// The infinite viewer: `V = (0, 0, 1)` everywhere (cheaper).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct InfiniteViewer;
+impl Viewer for InfiniteViewer {
+    const LOCAL: bool = false;
+}
+
+/// The local viewer: `V = normalise(−P)`, the eye at the eye-space origin.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct LocalViewer;
+impl Viewer for LocalViewer {
+    const LOCAL: bool = true;
+}
+
+/// `V` at eye-space point `p` for viewer `V` (zero where undefined).
+#[inline]
+pub fn view_dir<V: Viewer>(p: Vec3) -> Unit3 {
+    if V::LOCAL {
+        let b = p.to_bits();
+        normalize_len([-(b[0] as i64), -(b[1] as i64), -(b[2] as i64)])
+            .map(|(u, _)| u)
+            .unwrap_or(Unit3::ZERO)
+    } else {
+        Unit3::Z
+    }
+}
+
+/// The illumination equation prepared for one frame: material, global
+/// ambient and lights in eye space.
+///
+/// Build it once per frame (or whenever the camera, lights or material
+/// change) with [`Lighting::new`], then call [`Lighting::shade`] per vertex
+/// or per pixel.
+///
+/// ```
+/// use fixshade::{Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// use fixshade::illumination::InfiniteViewer;
+/// use fixshade::light::DirectionalLight;
+///
+/// let material = Material::new()
+///     .with_ambient(Rgb::from_f32(1.0, 0.5, 0.2).unwrap())
+///     .with_diffuse(Rgb::from_f32(1.0, 0.5, 0.2).unwrap());
+/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// let lighting: Lighting<_, InfiniteViewer, _> =
+///     Lighting::new(&material, Rgb::grey_f32(0.1).unwrap(), &sun, &Mat4::IDENTITY);
+/// // A surface facing the light: ambient 0.1·Ka + Kd.
+/// let c = lighting.shade(Vec3::ZERO, Unit3::Z).to_bits();
+/// assert!((c[0] as i64 - 65536).abs() <= 2);            // 0.1 + 1.0, clamped to 1
+/// assert!((c[1] as i64 - (0.55f64 * 65536.0) as i64).abs() <= 2);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Lighting<S: Specular, V: Viewer, L: LightSet> {
+    base: [u32; 3],
+    shininess: Exponent,
+    lights: L::Prepared,
+    _model: PhantomData<(S, V)>,
+}
+
+impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
+    /// Prepares the equation: `view` takes the lights' world-space
+    /// positions and directions to eye space.
+    pub fn new(material: &Material<S>, global_ambient: Rgb, lights: &L, view: &Mat4) -> Self {
+        let (e, a, ka) = (
+            material.emission.to_bits(),
+            global_ambient.to_bits(),
+            material.ambient.to_bits(),
+        );
+        // E ≤ 2^24 raw, A·Ka ≤ 2^48 in Q.32 → ≤ 2^32 after the shift:
+        // sum in u64, saturate to u32 (anything above 1.0 is clamped anyway).
+        let base = [0, 1, 2].map(|c| {
+            let sum = e[c] as u64 + ((a[c] as u64 * ka[c] as u64 + (1 << 15)) >> 16);
+            sum.min(u32::MAX as u64) as u32
+        });
+        let ks = if S::ENABLED {
+            material.specular.color()
+        } else {
+            Rgb::BLACK
+        };
+        Lighting {
+            base,
+            shininess: material.specular.shininess(),
+            lights: lights.prepare(view, material.diffuse, ks),
+            _model: PhantomData,
+        }
+    }
+
+    /// The colour at eye-space point `p` with unit normal `n` (SPEC.md 3),
+    /// clamped to [0, 1]. A zero normal lights nothing but `E + A·Ka`.
+    #[inline]
+    pub fn shade(&self, p: Vec3, n: Unit3) -> Shade {
+        let mut acc = self.base;
+        if !n.is_zero() {
+            let ctx = Surface {
+                position: p,
+                normal: n,
+                view: if S::ENABLED {
+                    view_dir::<V>(p)
+                } else {
+                    Unit3::ZERO
+                },
+                shininess: self.shininess,
+            };
+            self.lights.shade::<S>(&ctx, &mut acc);
+        }
+        Shade::from_bits(
+            acc[0].min(SHADE_ONE),
+            acc[1].min(SHADE_ONE),
+            acc[2].min(SHADE_ONE),
+        )
+    }
+
+    /// `E + A·Ka` alone, as `Q.16` (what a surface no light reaches shows).
+    pub fn ambient(&self) -> Shade {
+        Shade::from_bits(self.base[0], self.base[1], self.base[2])
+    }
+}

@@ -1,0 +1,970 @@
+//! The lights: directional, point, spot and area, with distance attenuation,
+//! and the sets that hold any number of them without allocating.
+//!
+//! # Paying only for what a scene uses
+//! Each kind of light is its own type, so a scene's light set decides at
+//! compile time which code exists:
+//! - [`DirectionalLight`] computes no distance and no attenuation;
+//! - [`PointLight`] computes distance and attenuation; with the falloff
+//!   [`NoAttenuation`] the attenuation code is gone too;
+//! - only [`SpotLight`] computes the spot factor;
+//! - [`AreaLight`] is k × k point lights sampled at the cells' centres.
+//!
+//! A light set ([`LightSet`]) is one light, a tuple of lights of different
+//! kinds (`(sun, lamp)`), an array `[L; N]` or a `heapless::Vec<L, N>` of one
+//! kind, or of [`AnyLight`] when the kinds are only known at run time.
+//!
+//! # Spaces and formats
+//! Light positions and directions are given in **world space**; preparing a
+//! light for a frame ([`LightSet::prepare`]) takes them to eye space with the
+//! view matrix. Positions are [`WidePoint`]s (`I40F24`: range ±2³⁹, 2⁻²⁴
+//! resolution), so a light 10⁴ units away and one 10⁻³ units from the
+//! surface are both represented well; the vector from a surface point to the
+//! light is formed in `i64` and normalised with its length.
+
+use fixed::types::{I40F24, U32F32};
+
+use crate::color::Rgb;
+use crate::illumination::{add_light, Gains, Surface, FACTOR_ONE};
+use crate::material::Specular;
+use crate::normalize::{normalize, normalize_len};
+use crate::specular_table::{pow_from_delta, Exponent};
+use crate::vector::{FormatError, Mat4, Unit3, Vec3, COORD_FRAC};
+
+/// Why a light could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LightError {
+    /// A number was NaN or infinite.
+    NotFinite,
+    /// A position or constant lies outside its format's range.
+    OutOfRange,
+    /// A direction or axis of length zero.
+    ZeroDirection,
+    /// A spot cutoff outside [0°, 90°].
+    BadCutoff,
+    /// A negative or too large spot exponent.
+    BadExponent,
+    /// An area light with k = 0 or k > [`AreaLight::MAX_K`].
+    BadSamples,
+}
+
+impl From<FormatError> for LightError {
+    fn from(e: FormatError) -> Self {
+        match e {
+            FormatError::NotFinite => LightError::NotFinite,
+            FormatError::OutOfRange => LightError::OutOfRange,
+        }
+    }
+}
+
+impl core::fmt::Display for LightError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            LightError::NotFinite => "light parameter is NaN or infinite",
+            LightError::OutOfRange => "light parameter out of range",
+            LightError::ZeroDirection => "light direction or axis has zero length",
+            LightError::BadCutoff => "spot cutoff outside [0, 90] degrees",
+            LightError::BadExponent => "spot exponent negative or above 4096",
+            LightError::BadSamples => "area light samples_k must be 1 to 16",
+        })
+    }
+}
+
+/// A point (or displacement) with `I40F24` components: range ±2³⁹ (about
+/// ±5.5·10¹¹), resolution 2⁻²⁴. Used for light positions.
+///
+/// ```
+/// use fixshade::light::WidePoint;
+/// let p = WidePoint::from_f32([1e4, 0.0, -2.5]).unwrap();
+/// assert_eq!(p.to_bits()[2], -(5 << 23));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct WidePoint {
+    c: [i64; 3],
+}
+
+/// The largest magnitude of a [`WidePoint`] component, in raw units (2³⁹
+/// in value): sums and differences of two stay far below 2⁶³.
+const WIDE_MAX: i64 = 1 << 63 >> 1 >> 24;
+
+impl WidePoint {
+    /// From raw `I40F24` bits, each clamped to ±2⁶².
+    pub const fn from_bits(x: i64, y: i64, z: i64) -> Self {
+        const fn cl(v: i64) -> i64 {
+            if v > WIDE_MAX << 24 {
+                WIDE_MAX << 24
+            } else if v < -(WIDE_MAX << 24) {
+                -(WIDE_MAX << 24)
+            } else {
+                v
+            }
+        }
+        WidePoint {
+            c: [cl(x), cl(y), cl(z)],
+        }
+    }
+
+    /// From floats; NaN/∞ and magnitudes of 2³⁹ or more are errors.
+    pub fn from_f32(v: [f32; 3]) -> Result<Self, FormatError> {
+        let mut c = [0i64; 3];
+        for (o, x) in c.iter_mut().zip(v) {
+            if !x.is_finite() {
+                return Err(FormatError::NotFinite);
+            }
+            if x.abs() >= (1u64 << 39) as f32 {
+                return Err(FormatError::OutOfRange);
+            }
+            *o = I40F24::from_num(x).to_bits();
+        }
+        Ok(WidePoint { c })
+    }
+
+    /// From a [`Vec3`] (always fits).
+    pub const fn from_vec3(v: Vec3) -> Self {
+        let b = v.to_bits();
+        WidePoint {
+            c: [b[0] as i64, b[1] as i64, b[2] as i64],
+        }
+    }
+
+    /// Raw `I40F24` bits.
+    pub const fn to_bits(self) -> [i64; 3] {
+        self.c
+    }
+}
+
+/// `view · p` for a point (w = 1), `p` and the result in `I40F24` raw units.
+/// Products of an `I8F24` entry (< 2³¹) and a coordinate (< 2⁶³) need
+/// `i128`; done once per light per frame.
+fn point_to_eye(view: &Mat4, p: [i64; 3], w: bool) -> [i64; 3] {
+    let mut out = [0i64; 3];
+    for (r, o) in out.iter_mut().enumerate() {
+        let m = &view.m[r];
+        let mut acc: i128 = 0;
+        for k in 0..3 {
+            acc += m[k] as i128 * p[k] as i128;
+        }
+        if w {
+            acc += (m[3] as i128) << COORD_FRAC;
+        }
+        let v = (acc + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
+        *o = v.clamp(-(WIDE_MAX << 24) as i128, (WIDE_MAX << 24) as i128) as i64;
+    }
+    out
+}
+
+/// A unit direction rotated by the view's linear part and renormalised.
+fn dir_to_eye(view: &Mat4, d: Unit3) -> Unit3 {
+    let b = d.to_bits();
+    let v = view.transform_dir_wide([b[0] as i32, b[1] as i32, b[2] as i32]);
+    normalize_len(v).map(|(u, _)| u).unwrap_or(Unit3::ZERO)
+}
+
+/// A unit vector from a float direction of any length; zero, NaN and ∞ are
+/// errors.
+///
+/// ```
+/// use fixshade::light::unit_from_f32;
+/// let u = unit_from_f32([0.0, 3.0, 4.0]).unwrap();
+/// assert_eq!(u.to_bits(), [0, 9830, 13107]);
+/// ```
+pub fn unit_from_f32(v: [f32; 3]) -> Result<Unit3, LightError> {
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(LightError::NotFinite);
+    }
+    let m = v.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+    if m == 0.0 {
+        return Err(LightError::ZeroDirection);
+    }
+    // Scale the largest component to ±2^30: the others keep 24 bits.
+    let s = v.map(|x| ((x / m) * (1u32 << 30) as f32) as i32);
+    normalize(s).ok_or(LightError::ZeroDirection)
+}
+
+// ---------------------------------------------------------------------------
+// Attenuation
+// ---------------------------------------------------------------------------
+
+/// How a point-like light's intensity falls with distance `d`.
+pub trait Falloff: Copy + core::fmt::Debug {
+    /// Per-frame form of the falloff.
+    type Prepared: Copy + core::fmt::Debug;
+    /// Prepares the constants.
+    fn prepare(&self) -> Self::Prepared;
+    /// The factor `f` in `Q.15` (0 ..= 2¹⁵) at distance `d` (`I40F24` raw
+    /// units, i.e. `Q.24`).
+    fn factor(p: &Self::Prepared, d_q24: u64) -> u32;
+}
+
+/// No attenuation: `f = 1`; the distance is not used.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct NoAttenuation;
+
+impl Falloff for NoAttenuation {
+    type Prepared = ();
+    fn prepare(&self) {}
+    #[inline(always)]
+    fn factor(_: &(), _: u64) -> u32 {
+        FACTOR_ONE
+    }
+}
+
+/// `f = min(1, 1 / (c0 + c1·d + c2·d²))` (SPEC.md 3); `f = 1` where the
+/// denominator is 0. Constants are `U32F32`: [0, 2³²) with 2⁻³² resolution,
+/// which covers 10⁻⁶ to 10⁶.
+///
+/// ```
+/// use fixshade::light::Attenuation;
+/// let a = Attenuation::new(1.0, 0.0, 0.25).unwrap();
+/// assert!(Attenuation::new(-1.0, 0.0, 0.0).is_err());
+/// # let _ = a;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Attenuation {
+    /// `c0`, `c1`, `c2`.
+    pub c: [U32F32; 3],
+}
+
+impl Default for Attenuation {
+    fn default() -> Self {
+        Attenuation::NONE
+    }
+}
+
+impl Attenuation {
+    /// `(1, 0, 0)`: `f = 1`, SCENE_FORMAT.md's default.
+    pub const NONE: Attenuation = Attenuation {
+        c: [U32F32::ONE, U32F32::ZERO, U32F32::ZERO],
+    };
+
+    /// From floats: each in [0, 2³²); NaN/∞ and negatives are errors.
+    pub fn new(c0: f32, c1: f32, c2: f32) -> Result<Self, LightError> {
+        let f = |v: f32| -> Result<U32F32, LightError> {
+            if !v.is_finite() {
+                return Err(LightError::NotFinite);
+            }
+            U32F32::checked_from_num(v).ok_or(LightError::OutOfRange)
+        };
+        Ok(Attenuation {
+            c: [f(c0)?, f(c1)?, f(c2)?],
+        })
+    }
+}
+
+/// A small unsigned float for the attenuation polynomial, whose terms span
+/// 10⁻¹² to 10²⁰: value = `m · 2^e`, `m` normalised to [2³¹, 2³²) or 0.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MiniFloat {
+    m: u32,
+    e: i32,
+}
+
+impl MiniFloat {
+    /// `v · 2^-frac`, truncated to 32 significant bits.
+    pub const fn from_u64(v: u64, frac: i32) -> MiniFloat {
+        if v == 0 {
+            return MiniFloat { m: 0, e: 0 };
+        }
+        let lz = v.leading_zeros();
+        let m = ((v << lz) >> 32) as u32;
+        MiniFloat {
+            m,
+            e: 32 - lz as i32 - frac,
+        }
+    }
+
+    /// The product, truncated to 32 significant bits (one 32 × 32 → 64
+    /// multiply).
+    #[inline]
+    pub const fn mul(self, o: MiniFloat) -> MiniFloat {
+        if self.m == 0 || o.m == 0 {
+            return MiniFloat { m: 0, e: 0 };
+        }
+        let p = self.m as u64 * o.m as u64; // in [2^62, 2^64)
+        if p >> 63 == 1 {
+            MiniFloat {
+                m: (p >> 32) as u32,
+                e: self.e + o.e + 32,
+            }
+        } else {
+            MiniFloat {
+                m: (p >> 31) as u32,
+                e: self.e + o.e + 31,
+            }
+        }
+    }
+
+    /// The value in `Q.32`, saturating at `u64::MAX`.
+    #[inline]
+    pub const fn to_q32_saturating(self) -> u64 {
+        if self.m == 0 {
+            return 0;
+        }
+        let s = self.e + 32;
+        if s > 32 {
+            u64::MAX
+        } else if s >= 0 {
+            (self.m as u64) << s
+        } else if s > -64 {
+            (self.m as u64) >> (-s)
+        } else {
+            0
+        }
+    }
+}
+
+/// [`Attenuation`] prepared: `c0` in `Q.32`, `c1` and `c2` as floats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreparedAttenuation {
+    c0: u64,
+    c1: MiniFloat,
+    c2: MiniFloat,
+}
+
+impl Falloff for Attenuation {
+    type Prepared = PreparedAttenuation;
+    fn prepare(&self) -> PreparedAttenuation {
+        PreparedAttenuation {
+            c0: self.c[0].to_bits(),
+            c1: MiniFloat::from_u64(self.c[1].to_bits(), 32),
+            c2: MiniFloat::from_u64(self.c[2].to_bits(), 32),
+        }
+    }
+
+    #[inline]
+    fn factor(p: &PreparedAttenuation, d_q24: u64) -> u32 {
+        let d = MiniFloat::from_u64(d_q24, COORD_FRAC as i32);
+        let den =
+            p.c0.saturating_add(p.c1.mul(d).to_q32_saturating())
+                .saturating_add(p.c2.mul(d).mul(d).to_q32_saturating());
+        if den <= 1 << 32 {
+            // den ≤ 1 (including den = 0): f = 1.
+            return FACTOR_ONE;
+        }
+        if den >= 1 << 48 {
+            // f < 2^-16: below half a Q.15 unit.
+            return 0;
+        }
+        // f = 2^32/den in Q.15 = 2^31 / (den >> 16); den >> 16 ∈ (2^16, 2^32)
+        // keeps 17+ significant bits. 2^31 + den16/2 < 2^32: no overflow.
+        let den16 = (den >> 16) as u32;
+        ((1u32 << 31) + den16 / 2) / den16
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Traits
+// ---------------------------------------------------------------------------
+
+/// A light prepared for a frame, in eye space, with its gains for the
+/// frame's material.
+pub trait PreparedLights: Clone + core::fmt::Debug {
+    /// Adds this light's (or these lights') contribution at `ctx` to `acc`
+    /// (`Q.16` per channel, saturating).
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]);
+}
+
+/// Any number of lights: one light, a tuple, an array, a `heapless::Vec`.
+pub trait LightSet {
+    /// The lights in eye space with their gains.
+    type Prepared: PreparedLights;
+    /// Takes the lights to eye space with `view` and multiplies their
+    /// intensities with the material's diffuse colour `kd` and specular
+    /// colour `ks`.
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared;
+}
+
+// ---------------------------------------------------------------------------
+// Directional
+// ---------------------------------------------------------------------------
+
+/// A light at infinity (SPEC.md 2): constant direction, no distance, no
+/// attenuation.
+///
+/// ```
+/// use fixshade::light::DirectionalLight;
+/// use fixshade::Rgb;
+/// let sun = DirectionalLight::new([1.0, 1.0, 1.0]).unwrap()
+///     .with_specular(Rgb::grey_f32(0.5).unwrap());
+/// assert_eq!(sun.diffuse, Rgb::WHITE);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DirectionalLight {
+    /// Unit direction towards the light, world space.
+    pub direction: Unit3,
+    /// Diffuse intensity `Id`.
+    pub diffuse: Rgb,
+    /// Specular intensity `Is`.
+    pub specular: Rgb,
+}
+
+impl DirectionalLight {
+    /// A white light shining from `towards_light` (any length but zero).
+    pub fn new(towards_light: [f32; 3]) -> Result<Self, LightError> {
+        Ok(DirectionalLight::from_unit(unit_from_f32(towards_light)?))
+    }
+    /// A white light from a unit direction.
+    pub const fn from_unit(direction: Unit3) -> Self {
+        DirectionalLight {
+            direction,
+            diffuse: Rgb::WHITE,
+            specular: Rgb::WHITE,
+        }
+    }
+    /// Sets the diffuse intensity.
+    pub const fn with_diffuse(mut self, c: Rgb) -> Self {
+        self.diffuse = c;
+        self
+    }
+    /// Sets the specular intensity.
+    pub const fn with_specular(mut self, c: Rgb) -> Self {
+        self.specular = c;
+        self
+    }
+}
+
+/// [`DirectionalLight`] prepared.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreparedDirectional {
+    l: Unit3,
+    gains: Gains,
+}
+
+impl PreparedLights for PreparedDirectional {
+    #[inline]
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        add_light::<S>(ctx, self.l, FACTOR_ONE, &self.gains, acc);
+    }
+}
+
+impl LightSet for DirectionalLight {
+    type Prepared = PreparedDirectional;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedDirectional {
+        PreparedDirectional {
+            l: dir_to_eye(view, self.direction),
+            gains: Gains::new(self.diffuse, self.specular, kd, ks),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Point and spot
+// ---------------------------------------------------------------------------
+
+/// A point light with falloff `A` ([`Attenuation`] by default).
+///
+/// ```
+/// use fixshade::light::{Attenuation, PointLight};
+/// let lamp = PointLight::new([0.0, 2.0, 1.0]).unwrap()
+///     .with_attenuation(Attenuation::new(1.0, 0.1, 0.01).unwrap());
+/// let cheap = PointLight::new([0.0, 2.0, 1.0]).unwrap().without_attenuation();
+/// # let _ = (lamp, cheap);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PointLight<A: Falloff = Attenuation> {
+    /// World-space position.
+    pub position: WidePoint,
+    /// Diffuse intensity `Id`.
+    pub diffuse: Rgb,
+    /// Specular intensity `Is`.
+    pub specular: Rgb,
+    /// Distance falloff.
+    pub attenuation: A,
+}
+
+impl PointLight<Attenuation> {
+    /// A white light at `position` with attenuation `(1, 0, 0)`.
+    pub fn new(position: [f32; 3]) -> Result<Self, LightError> {
+        Ok(PointLight {
+            position: WidePoint::from_f32(position)?,
+            diffuse: Rgb::WHITE,
+            specular: Rgb::WHITE,
+            attenuation: Attenuation::NONE,
+        })
+    }
+}
+
+impl<A: Falloff> PointLight<A> {
+    /// Sets the diffuse intensity.
+    pub const fn with_diffuse(mut self, c: Rgb) -> Self {
+        self.diffuse = c;
+        self
+    }
+    /// Sets the specular intensity.
+    pub const fn with_specular(mut self, c: Rgb) -> Self {
+        self.specular = c;
+        self
+    }
+    /// Sets an attenuation.
+    pub fn with_attenuation(self, a: Attenuation) -> PointLight<Attenuation> {
+        PointLight {
+            position: self.position,
+            diffuse: self.diffuse,
+            specular: self.specular,
+            attenuation: a,
+        }
+    }
+    /// Removes attenuation from the type: `f = 1`, no attenuation code.
+    pub fn without_attenuation(self) -> PointLight<NoAttenuation> {
+        PointLight {
+            position: self.position,
+            diffuse: self.diffuse,
+            specular: self.specular,
+            attenuation: NoAttenuation,
+        }
+    }
+}
+
+/// A spot's cone: `s = 0` outside the cutoff angle, `cos^p γ` inside.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SpotCone {
+    /// Unit axis (the direction the spot shines), world space.
+    pub axis: Unit3,
+    /// `1 − cos(cutoff)` in `Q.28`.
+    pub delta_cutoff: u32,
+    /// The spot exponent `p`.
+    pub exponent: Exponent,
+}
+
+impl SpotCone {
+    /// A cone from an axis, a cutoff in degrees ([0, 90]) and an exponent
+    /// ([0, 4096]).
+    pub fn new(axis: [f32; 3], cutoff_deg: f32, exponent: f32) -> Result<Self, LightError> {
+        if !cutoff_deg.is_finite() || !exponent.is_finite() {
+            return Err(LightError::NotFinite);
+        }
+        if !(0.0..=90.0).contains(&cutoff_deg) {
+            return Err(LightError::BadCutoff);
+        }
+        Ok(SpotCone {
+            axis: unit_from_f32(axis)?,
+            delta_cutoff: one_minus_cos_q28(cutoff_deg as f64),
+            exponent: Exponent::from_f32(exponent).map_err(|_| LightError::BadExponent)?,
+        })
+    }
+}
+
+/// `1 − cos(deg°) = 2 sin²(deg°/2)` in `Q.28`, for `deg` in [0, 90], by a
+/// Taylor series (once per light; no libm in `no_std`).
+fn one_minus_cos_q28(deg: f64) -> u32 {
+    let x = deg * core::f64::consts::PI / 360.0; // half angle, ≤ π/4
+    let (mut term, mut sum) = (x, x);
+    for k in 1..12 {
+        term *= -x * x / ((2 * k) as f64 * (2 * k + 1) as f64);
+        sum += term;
+    }
+    let v = 2.0 * sum * sum * (1u64 << 28) as f64 + 0.5;
+    v as u32
+}
+
+/// A spot light: a point light with a cone.
+///
+/// ```
+/// use fixshade::light::SpotLight;
+/// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
+/// assert!(SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 120.0, 8.0).is_err());
+/// # let _ = spot;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SpotLight<A: Falloff = Attenuation> {
+    /// The light without its cone.
+    pub light: PointLight<A>,
+    /// The cone.
+    pub cone: SpotCone,
+}
+
+impl SpotLight<Attenuation> {
+    /// A white spot at `position` shining along `axis`, attenuation `(1, 0, 0)`.
+    pub fn new(
+        position: [f32; 3],
+        axis: [f32; 3],
+        cutoff_deg: f32,
+        exponent: f32,
+    ) -> Result<Self, LightError> {
+        Ok(SpotLight {
+            light: PointLight::new(position)?,
+            cone: SpotCone::new(axis, cutoff_deg, exponent)?,
+        })
+    }
+}
+
+impl<A: Falloff> SpotLight<A> {
+    /// Sets the diffuse intensity.
+    pub const fn with_diffuse(mut self, c: Rgb) -> Self {
+        self.light.diffuse = c;
+        self
+    }
+    /// Sets the specular intensity.
+    pub const fn with_specular(mut self, c: Rgb) -> Self {
+        self.light.specular = c;
+        self
+    }
+    /// Sets an attenuation.
+    pub fn with_attenuation(self, a: Attenuation) -> SpotLight<Attenuation> {
+        SpotLight {
+            light: self.light.with_attenuation(a),
+            cone: self.cone,
+        }
+    }
+}
+
+/// A point or spot light prepared: eye-space position, gains, falloff, and
+/// the cone in eye space for a spot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreparedPoint<A: Falloff, const SPOT: bool> {
+    pos: [i64; 3],
+    gains: Gains,
+    att: A::Prepared,
+    cone: SpotCone,
+}
+
+/// The factor `s·f` (`Q.15`) and direction of a point-like light at `pos`
+/// (eye space, `I40F24`) seen from the surface; `None` where `d = 0`.
+#[inline(always)]
+fn point_factor<A: Falloff, const SPOT: bool>(
+    ctx: &Surface,
+    pos: &[i64; 3],
+    att: &A::Prepared,
+    cone: &SpotCone,
+) -> Option<(Unit3, u32)> {
+    let p = ctx.position.to_bits();
+    // |pos| ≤ 2^62, |p| < 2^31: the difference cannot overflow.
+    let v = [0, 1, 2].map(|i| pos[i] - p[i] as i64);
+    let (l, d) = normalize_len(v)?;
+    let mut sf = A::factor(att, d);
+    if SPOT {
+        let delta = l.neg().half_dist_sq(cone.axis);
+        if delta > cone.delta_cutoff {
+            return None;
+        }
+        let s = pow_from_delta(delta, cone.exponent) as u32;
+        sf = (s * sf + (1 << 14)) >> 15;
+    }
+    Some((l, sf))
+}
+
+impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {
+    #[inline]
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        if let Some((l, sf)) = point_factor::<A, SPOT>(ctx, &self.pos, &self.att, &self.cone) {
+            add_light::<S>(ctx, l, sf, &self.gains, acc);
+        }
+    }
+}
+
+fn prepare_point<A: Falloff, const SPOT: bool>(
+    view: &Mat4,
+    l: &PointLight<A>,
+    cone: SpotCone,
+    kd: Rgb,
+    ks: Rgb,
+) -> PreparedPoint<A, SPOT> {
+    PreparedPoint {
+        pos: point_to_eye(view, l.position.to_bits(), true),
+        gains: Gains::new(l.diffuse, l.specular, kd, ks),
+        att: l.attenuation.prepare(),
+        cone: SpotCone {
+            axis: dir_to_eye(view, cone.axis),
+            ..cone
+        },
+    }
+}
+
+impl<A: Falloff> LightSet for PointLight<A> {
+    type Prepared = PreparedPoint<A, false>;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
+        let no_cone = SpotCone {
+            axis: Unit3::ZERO,
+            delta_cutoff: 0,
+            exponent: Exponent::ZERO,
+        };
+        prepare_point(view, self, no_cone, kd, ks)
+    }
+}
+
+impl<A: Falloff> LightSet for SpotLight<A> {
+    type Prepared = PreparedPoint<A, true>;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
+        prepare_point(view, &self.light, self.cone, kd, ks)
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Area
+// ---------------------------------------------------------------------------
+
+/// A rectangular area light (centre and two edge vectors), sampled as k × k
+/// point lights at the centres of its cells, each carrying 1/k² of its
+/// intensity (SPEC.md 3).
+///
+/// ```
+/// use fixshade::light::AreaLight;
+/// let panel = AreaLight::new([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 3).unwrap();
+/// assert!(AreaLight::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 0).is_err());
+/// # let _ = panel;
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct AreaLight<A: Falloff = Attenuation> {
+    /// Centre, world space.
+    pub center: WidePoint,
+    /// First edge vector (the rectangle spans `center ± edge_u/2 ± edge_v/2`).
+    pub edge_u: WidePoint,
+    /// Second edge vector.
+    pub edge_v: WidePoint,
+    /// Samples per edge, 1 ..= [`AreaLight::MAX_K`].
+    pub samples_k: u8,
+    /// Diffuse intensity of the whole light.
+    pub diffuse: Rgb,
+    /// Specular intensity of the whole light.
+    pub specular: Rgb,
+    /// Falloff of each sample.
+    pub attenuation: A,
+}
+
+impl AreaLight<Attenuation> {
+    /// The largest k: 256 samples.
+    pub const MAX_K: u8 = 16;
+
+    /// A white area light, attenuation `(1, 0, 0)`.
+    pub fn new(
+        center: [f32; 3],
+        edge_u: [f32; 3],
+        edge_v: [f32; 3],
+        samples_k: u8,
+    ) -> Result<Self, LightError> {
+        if samples_k == 0 || samples_k > Self::MAX_K {
+            return Err(LightError::BadSamples);
+        }
+        Ok(AreaLight {
+            center: WidePoint::from_f32(center)?,
+            edge_u: WidePoint::from_f32(edge_u)?,
+            edge_v: WidePoint::from_f32(edge_v)?,
+            samples_k,
+            diffuse: Rgb::WHITE,
+            specular: Rgb::WHITE,
+            attenuation: Attenuation::NONE,
+        })
+    }
+}
+
+impl<A: Falloff> AreaLight<A> {
+    /// Sets the diffuse intensity.
+    pub const fn with_diffuse(mut self, c: Rgb) -> Self {
+        self.diffuse = c;
+        self
+    }
+    /// Sets the specular intensity.
+    pub const fn with_specular(mut self, c: Rgb) -> Self {
+        self.specular = c;
+        self
+    }
+    /// Sets the attenuation.
+    pub fn with_attenuation(self, a: Attenuation) -> AreaLight<Attenuation> {
+        AreaLight {
+            center: self.center,
+            edge_u: self.edge_u,
+            edge_v: self.edge_v,
+            samples_k: self.samples_k,
+            diffuse: self.diffuse,
+            specular: self.specular,
+            attenuation: a,
+        }
+    }
+}
+
+/// [`AreaLight`] prepared: the first sample and the steps between samples,
+/// in eye space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PreparedArea<A: Falloff> {
+    first: [i64; 3],
+    step_u: [i64; 3],
+    step_v: [i64; 3],
+    k: u8,
+    gains: Gains,
+    att: A::Prepared,
+}
+
+impl<A: Falloff> LightSet for AreaLight<A> {
+    type Prepared = PreparedArea<A>;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedArea<A> {
+        let k = self.samples_k.clamp(1, AreaLight::MAX_K) as i64;
+        let c = point_to_eye(view, self.center.to_bits(), true);
+        let u = point_to_eye(view, self.edge_u.to_bits(), false);
+        let v = point_to_eye(view, self.edge_v.to_bits(), false);
+        // Cell centre (i, j): c + ((i + ½)/k − ½)·u + ((j + ½)/k − ½)·v
+        //                   = c + (1 − k)/(2k)·(u + v) + i·u/k + j·v/k.
+        let div = |x: i64, d: i64| (x + x.signum() * d / 2) / d;
+        let first = [0, 1, 2].map(|i| c[i] + div((1 - k) * (u[i] + v[i]), 2 * k));
+        let k2 = (k * k) as u32;
+        PreparedArea {
+            first,
+            step_u: u.map(|x| div(x, k)),
+            step_v: v.map(|x| div(x, k)),
+            k: k as u8,
+            gains: Self::scaled_gains(self, kd, ks, k2),
+            att: self.attenuation.prepare(),
+        }
+    }
+}
+
+impl<A: Falloff> AreaLight<A> {
+    fn scaled_gains(&self, kd: Rgb, ks: Rgb, k2: u32) -> Gains {
+        Gains::new(
+            self.diffuse.scaled(1, k2),
+            self.specular.scaled(1, k2),
+            kd,
+            ks,
+        )
+    }
+}
+
+impl<A: Falloff> PreparedLights for PreparedArea<A> {
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        let no_cone = SpotCone {
+            axis: Unit3::ZERO,
+            delta_cutoff: 0,
+            exponent: Exponent::ZERO,
+        };
+        let mut row = self.first;
+        for _ in 0..self.k {
+            let mut pos = row;
+            for _ in 0..self.k {
+                if let Some((l, sf)) = point_factor::<A, false>(ctx, &pos, &self.att, &no_cone) {
+                    add_light::<S>(ctx, l, sf, &self.gains, acc);
+                }
+                pos = [0, 1, 2].map(|i| pos[i] + self.step_v[i]);
+            }
+            row = [0, 1, 2].map(|i| row[i] + self.step_u[i]);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Any light, and collections
+// ---------------------------------------------------------------------------
+
+/// A light whose kind is chosen at run time (scene files): pays for every
+/// kind's code. Prefer the concrete types in firmware.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AnyLight {
+    /// A directional light.
+    Directional(DirectionalLight),
+    /// A point light.
+    Point(PointLight),
+    /// A spot light.
+    Spot(SpotLight),
+    /// An area light.
+    Area(AreaLight),
+}
+
+/// [`AnyLight`] prepared.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PreparedAny {
+    /// A directional light.
+    Directional(PreparedDirectional),
+    /// A point light.
+    Point(PreparedPoint<Attenuation, false>),
+    /// A spot light.
+    Spot(PreparedPoint<Attenuation, true>),
+    /// An area light.
+    Area(PreparedArea<Attenuation>),
+}
+
+impl LightSet for AnyLight {
+    type Prepared = PreparedAny;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedAny {
+        match self {
+            AnyLight::Directional(l) => PreparedAny::Directional(l.prepare(view, kd, ks)),
+            AnyLight::Point(l) => PreparedAny::Point(l.prepare(view, kd, ks)),
+            AnyLight::Spot(l) => PreparedAny::Spot(l.prepare(view, kd, ks)),
+            AnyLight::Area(l) => PreparedAny::Area(l.prepare(view, kd, ks)),
+        }
+    }
+}
+
+impl PreparedLights for PreparedAny {
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        match self {
+            PreparedAny::Directional(l) => l.shade::<S>(ctx, acc),
+            PreparedAny::Point(l) => l.shade::<S>(ctx, acc),
+            PreparedAny::Spot(l) => l.shade::<S>(ctx, acc),
+            PreparedAny::Area(l) => l.shade::<S>(ctx, acc),
+        }
+    }
+}
+
+/// No lights at all: `E + A·Ka` only.
+impl LightSet for () {
+    type Prepared = ();
+    fn prepare(&self, _: &Mat4, _: Rgb, _: Rgb) {}
+}
+
+impl PreparedLights for () {
+    #[inline(always)]
+    fn shade<S: Specular>(&self, _: &Surface, _: &mut [u32; 3]) {}
+}
+
+macro_rules! tuple_sets {
+    ($(($($t:ident $i:tt),+)),+ $(,)?) => {$(
+        impl<$($t: LightSet),+> LightSet for ($($t,)+) {
+            type Prepared = ($($t::Prepared,)+);
+            fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
+                ($(self.$i.prepare(view, kd, ks),)+)
+            }
+        }
+        impl<$($t: PreparedLights),+> PreparedLights for ($($t,)+) {
+            #[inline]
+            fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+                $(self.$i.shade::<S>(ctx, acc);)+
+            }
+        }
+    )+};
+}
+
+tuple_sets!(
+    (A 0),
+    (A 0, B 1),
+    (A 0, B 1, C 2),
+    (A 0, B 1, C 2, D 3),
+    (A 0, B 1, C 2, D 3, E 4),
+    (A 0, B 1, C 2, D 3, E 4, F 5),
+    (A 0, B 1, C 2, D 3, E 4, F 5, G 6),
+    (A 0, B 1, C 2, D 3, E 4, F 5, G 6, H 7),
+);
+
+impl<L: LightSet, const N: usize> LightSet for [L; N] {
+    type Prepared = [L::Prepared; N];
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
+        self.each_ref().map(|l| l.prepare(view, kd, ks))
+    }
+}
+
+impl<P: PreparedLights, const N: usize> PreparedLights for [P; N] {
+    #[inline]
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        for l in self {
+            l.shade::<S>(ctx, acc);
+        }
+    }
+}
+
+impl<L: LightSet, const N: usize> LightSet for heapless::Vec<L, N> {
+    type Prepared = heapless::Vec<L::Prepared, N>;
+    fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
+        let mut out = heapless::Vec::new();
+        for l in self {
+            // Same capacity as `self`: a push cannot fail.
+            let _ = out.push(l.prepare(view, kd, ks));
+        }
+        out
+    }
+}
+
+impl<P: PreparedLights, const N: usize> PreparedLights for heapless::Vec<P, N> {
+    #[inline]
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        for l in self {
+            l.shade::<S>(ctx, acc);
+        }
+    }
+}

@@ -1,0 +1,823 @@
+//! The pipeline: from a mesh, a model transform and a camera to RGB565
+//! pixels in any `embedded-graphics` `DrawTarget`.
+//!
+//! Per vertex, once per frame and only for vertices that a triangle uses:
+//! model-view transform (`I8F24`), normal transform (`I2F14`, 16 × 16-bit
+//! products), projection to clip space, snapping to 1/16 pixel. Lighting
+//! (Gouraud) is done later, and only for vertices of triangles that survive
+//! culling and touch the target. Triangles that cross the near plane are
+//! clipped in clip space (SPEC.md 5); the rest of the frustum is left to
+//! the rasterizer's clipping to the target's bounds.
+//!
+//! Output goes through [`DrawTarget::fill_contiguous`], one call per span
+//! (or per run of pixels that pass the depth test), never per pixel.
+//!
+//! # Cost selection
+//! The shading mode ([`Flat`], [`Gouraud`], [`PhongShading`]) and the depth
+//! test ([`NoDepth`] or [`DepthBuffer`](crate::depth::DepthBuffer)) are type
+//! parameters of [`Renderer::draw`]: a mode or a depth test a scene does
+//! not use is not compiled.
+//!
+//! # Stack
+//! A draw call keeps a handful of set-up triangles and clip polygons on the
+//! stack (a few hundred bytes per shading mode); no recursion, no heap.
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::{Point, Size};
+use embedded_graphics::primitives::Rectangle;
+
+use crate::camera::{Camera, CameraError, ProjectionCoeffs};
+use crate::color::{pack565, Rgb, Shade};
+use crate::depth::DepthTest;
+pub use crate::depth::NoDepth;
+use crate::illumination::{Lighting, Viewer};
+use crate::light::LightSet;
+use crate::material::{Material, Specular};
+use crate::mesh::{face_normal, Mesh, MeshError};
+use crate::normalize::normalize;
+use crate::rasterizer::{area2, ClipRect, RasterVertex, Span, Triangle, COORD_LIMIT};
+use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
+
+/// Which shading mode a type selects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ShadingKind {
+    /// One colour per triangle.
+    Flat,
+    /// Colours per vertex, interpolated.
+    Gouraud,
+    /// Normals and positions interpolated, lit per pixel.
+    Phong,
+}
+
+/// A shading mode, chosen by type: [`Flat`], [`Gouraud`] or
+/// [`PhongShading`].
+pub trait ShadingMode {
+    /// The mode.
+    const KIND: ShadingKind;
+}
+
+/// Flat shading: the equation at each triangle's centroid with its face
+/// normal (SPEC.md 4).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Flat;
+impl ShadingMode for Flat {
+    const KIND: ShadingKind = ShadingKind::Flat;
+}
+
+/// Gouraud shading: the equation per vertex, colours interpolated with
+/// integer arithmetic (16 fractional bits below the RGB565 step).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Gouraud;
+impl ShadingMode for Gouraud {
+    const KIND: ShadingKind = ShadingKind::Gouraud;
+}
+
+/// Phong shading: normal and eye position interpolated, the normal
+/// renormalised and the equation evaluated per pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct PhongShading;
+impl ShadingMode for PhongShading {
+    const KIND: ShadingKind = ShadingKind::Phong;
+}
+
+/// Render switches that cost nothing to keep at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct RenderOptions {
+    /// Drop back faces (SPEC.md 5).
+    pub cull: bool,
+    /// Light back faces with the negated normal (SPEC.md 3).
+    pub two_sided: bool,
+    /// 4 × 4 ordered dithering when quantising to RGB565 (off in every
+    /// comparison with the reference).
+    pub dither: bool,
+}
+
+impl Default for RenderOptions {
+    /// Culling on, one-sided lighting, no dithering.
+    fn default() -> Self {
+        RenderOptions {
+            cull: true,
+            two_sided: false,
+            dither: false,
+        }
+    }
+}
+
+/// Why a draw call failed. Nothing was drawn unless the error is
+/// [`RenderError::Target`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RenderError<E> {
+    /// The mesh is inconsistent.
+    Mesh(MeshError),
+    /// The camera's projection does not fit the target.
+    Camera(CameraError),
+    /// The vertex cache is shorter than the mesh's vertex count.
+    CacheTooSmall,
+    /// The depth buffer is smaller than the target.
+    DepthTooSmall,
+    /// The target is wider or taller than 2²⁰ pixels.
+    TargetTooLarge,
+    /// The target reported an error.
+    Target(E),
+}
+
+impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            RenderError::Mesh(e) => write!(f, "mesh: {e}"),
+            RenderError::Camera(e) => write!(f, "camera: {e}"),
+            RenderError::CacheTooSmall => f.write_str("vertex cache shorter than the vertex count"),
+            RenderError::DepthTooSmall => f.write_str("depth buffer smaller than the target"),
+            RenderError::TargetTooLarge => f.write_str("target larger than 2^20 pixels a side"),
+            RenderError::Target(e) => write!(f, "target: {e:?}"),
+        }
+    }
+}
+
+/// Counts of one draw call.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct DrawStats {
+    /// Triangles in the mesh.
+    pub triangles: u32,
+    /// Triangles (or clipped pieces) that were rasterized.
+    pub drawn: u32,
+    /// Triangles clipped by the near plane.
+    pub clipped: u32,
+    /// Pixels sent to the target.
+    pub pixels: u32,
+    /// Vertices lit.
+    pub lit: u32,
+}
+
+const F_PROJECTED: u8 = 1;
+const F_FRONT: u8 = 2;
+const F_BACK: u8 = 4;
+
+/// One vertex's per-frame data, in a cache the caller provides (one per
+/// mesh vertex): about 80 bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CachedVertex {
+    eye: Vec3,
+    normal: Unit3,
+    flags: u8,
+    clip: [i64; 4],
+    win: [i64; 3],
+    front: Shade,
+    back: Shade,
+}
+
+/// The largest target side in pixels.
+pub const MAX_TARGET_SIDE: u32 = 1 << 20;
+
+/// A frame's renderer: camera, model transform, prepared lighting and
+/// options.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use fixshade::camera::Camera;
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::illumination::InfiniteViewer;
+/// use fixshade::light::DirectionalLight;
+/// use fixshade::mesh::Mesh;
+/// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
+/// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+///
+/// static P: [Vec3; 3] = [
+///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+///     Vec3::from_bits(1 << 24, -1 << 24, 0),
+///     Vec3::from_bits(0, 1 << 24, 0),
+/// ];
+/// static N: [Unit3; 3] = [Unit3::Z; 3];
+/// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// let renderer = Renderer::<_, InfiniteViewer, _>::new(
+///     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// );
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut cache = [CachedVertex::default(); 3];
+/// let stats = renderer.draw::<Gouraud, _, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// assert!(stats.pixels > 50);
+/// assert_eq!(fb.pixel(16, 16), Some(Rgb565::new(25, 50, 25))); // 0.8 diffuse
+/// ```
+#[derive(Clone, Debug)]
+pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
+    lighting: Lighting<S, V, L>,
+    camera: Camera,
+    modelview: Mat4,
+    normal_m: [[i16; 3]; 3],
+    options: RenderOptions,
+}
+
+impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
+    /// Prepares a frame: lights to eye space, model-view and normal
+    /// matrices. A singular model matrix gives zero normals (lit by
+    /// `E + A·Ka` only).
+    pub fn new(
+        camera: &Camera,
+        model: Mat4,
+        material: &Material<S>,
+        global_ambient: Rgb,
+        lights: &L,
+        options: RenderOptions,
+    ) -> Self {
+        let modelview = camera.view.mul(&model);
+        Renderer {
+            lighting: Lighting::new(material, global_ambient, lights, &camera.view),
+            camera: *camera,
+            modelview,
+            normal_m: normal_matrix(&modelview).unwrap_or([[0; 3]; 3]),
+            options,
+        }
+    }
+
+    /// The prepared illumination equation.
+    pub fn lighting(&self) -> &Lighting<S, V, L> {
+        &self.lighting
+    }
+
+    /// Draws `mesh` into `target` with shading mode `M` and depth test `D`.
+    ///
+    /// `cache` needs one [`CachedVertex`] per mesh vertex. The target's
+    /// bounding box is the viewport (SPEC.md 1); no pixel outside it is
+    /// sent. Clearing the target and the depth buffer is the caller's.
+    pub fn draw<M, T, D>(
+        &self,
+        mesh: &Mesh,
+        target: &mut T,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<T::Error>>
+    where
+        M: ShadingMode,
+        T: DrawTarget<Color = Rgb565>,
+        D: DepthTest,
+    {
+        mesh.validate().map_err(RenderError::Mesh)?;
+        let n = mesh.positions.len();
+        if cache.len() < n {
+            return Err(RenderError::CacheTooSmall);
+        }
+        let bb = target.bounding_box();
+        let (w, h) = (bb.size.width, bb.size.height);
+        if w > MAX_TARGET_SIDE || h > MAX_TARGET_SIDE {
+            return Err(RenderError::TargetTooLarge);
+        }
+        if D::ENABLED
+            && depth
+                .row(h.saturating_sub(1), w.saturating_sub(1), 1)
+                .is_empty()
+            && w > 0
+            && h > 0
+        {
+            return Err(RenderError::DepthTooSmall);
+        }
+        let proj = self
+            .camera
+            .projection_for(w, h)
+            .map_err(RenderError::Camera)?;
+        let mut stats = DrawStats {
+            triangles: mesh.indices.len() as u32,
+            ..DrawStats::default()
+        };
+        let Some(clip) = ClipRect::of_size(w, h) else {
+            return Ok(stats);
+        };
+        for c in cache[..n].iter_mut() {
+            c.flags = 0;
+        }
+        let frame = Frame {
+            r: self,
+            mesh,
+            proj,
+            w: w as i64,
+            h: h as i64,
+            origin: bb.top_left,
+            clip,
+        };
+        for tri in mesh.indices {
+            let idx = tri.map(|i| i as usize);
+            for &i in &idx {
+                frame.project(&mut cache[i], i);
+            }
+            frame.triangle::<M, T, D>(idx, cache, target, depth, &mut stats)?;
+        }
+        Ok(stats)
+    }
+}
+
+/// Per-draw constants.
+struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
+    r: &'a Renderer<S, V, L>,
+    mesh: &'a Mesh<'m>,
+    proj: ProjectionCoeffs,
+    w: i64,
+    h: i64,
+    origin: Point,
+    clip: ClipRect,
+}
+
+/// Where a vertex of a near-clipped polygon comes from: an original vertex,
+/// or the point `a + t·(b − a)` on edge `a → b` (a inside, b outside) with
+/// `t = num / den = d_a / (d_a − d_b)`, `d = z_c + w_c`.
+#[derive(Clone, Copy, Debug)]
+enum PolyVert {
+    Orig(usize),
+    Cut {
+        a: usize,
+        b: usize,
+        num: i64,
+        den: i64,
+    },
+}
+
+/// Floor division for `b > 0`.
+#[inline]
+fn floor_div(a: i64, b: i64) -> i64 {
+    let q = a / b;
+    if a % b < 0 {
+        q - 1
+    } else {
+        q
+    }
+}
+
+/// `round(x · num / den)` for `0 ≤ num ≤ den`, `den > 0`, in `i128`
+/// (`|x| < 2⁶³`, `num < 2⁶³`: the product is below 2¹²⁶).
+#[inline]
+fn lerp_part(x: i64, num: i64, den: i64) -> i64 {
+    let p = x as i128 * num as i128;
+    let d = den as i128;
+    let q = if p >= 0 {
+        (2 * p + d) / (2 * d)
+    } else {
+        -((-2 * p + d) / (2 * d))
+    };
+    q as i64
+}
+
+/// The clip-space point where the near plane cuts edge `a → b`.
+fn cut(a: &[i64; 4], b: &[i64; 4], num: i64, den: i64) -> [i64; 4] {
+    [0, 1, 2, 3].map(|k| a[k] + lerp_part(b[k] - a[k], num, den))
+}
+
+/// The centroid of three eye-space points (sums in `i64`, rounded).
+fn centroid(e: [Vec3; 3]) -> Vec3 {
+    let b = e.map(|v| v.to_bits());
+    let c = [0, 1, 2].map(|k| {
+        let s = b[0][k] as i64 + b[1][k] as i64 + b[2][k] as i64;
+        floor_div(2 * s + 3, 6) as i32
+    });
+    Vec3::from_bits(c[0], c[1], c[2])
+}
+
+/// 4 × 4 Bayer thresholds, `(m + ½)/16` in `Q.16`.
+const BAYER: [[u32; 4]; 4] = {
+    const M: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    let mut out = [[0u32; 4]; 4];
+    let mut y = 0;
+    while y < 4 {
+        let mut x = 0;
+        while x < 4 {
+            out[y][x] = (2 * M[y][x] + 1) << 11;
+            x += 1;
+        }
+        y += 1;
+    }
+    out
+};
+
+/// A shade quantised to RGB565, with ordered dithering at `(x, y)` if
+/// `dither`: `⌊v · 31 + t⌋` with the Bayer threshold `t` instead of ½.
+#[inline]
+fn quantise(c: Shade, dither: bool, x: i32, y: i32) -> Rgb565 {
+    if !dither {
+        return c.to_rgb565();
+    }
+    let t = BAYER[(y & 3) as usize][(x & 3) as usize];
+    let b = c.to_bits();
+    let q = |v: u32, m: u32| ((v * m + t) >> 16).min(m);
+    Rgb565::new(q(b[0], 31) as u8, q(b[1], 63) as u8, q(b[2], 31) as u8)
+}
+
+impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
+    /// Transforms and projects vertex `i` unless already done this frame.
+    #[inline]
+    fn project(&self, c: &mut CachedVertex, i: usize) {
+        if c.flags & F_PROJECTED != 0 {
+            return;
+        }
+        c.eye = self.r.modelview.transform_point(self.mesh.positions[i]);
+        c.normal = match self.mesh.normals {
+            Some(ns) => self.normal_to_eye(ns[i]),
+            None => Unit3::ZERO,
+        };
+        c.clip = self.proj.clip(c.eye);
+        c.win = self.window(&c.clip);
+        c.flags = F_PROJECTED;
+    }
+
+    /// `N_eye = normalise(M_n · N)`: 16 × 16-bit products, sums below 2³¹.
+    #[inline]
+    fn normal_to_eye(&self, n: Unit3) -> Unit3 {
+        let b = n.to_bits();
+        let m = &self.r.normal_m;
+        let row = |r: usize| {
+            m[r][0] as i32 * b[0] as i32
+                + m[r][1] as i32 * b[1] as i32
+                + m[r][2] as i32 * b[2] as i32
+        };
+        normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
+    }
+
+    /// Window position (1/16 pixel, clamped to ±2²⁸) and depth (`Q.24` of
+    /// `z_w`) of a clip-space point in front of the near plane (SPEC.md 1,
+    /// 5): `X = ⌊x_w·16 + ½⌋`.
+    ///
+    /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
+    /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `2·x_c·8W < 2⁶³`.
+    #[inline]
+    fn window(&self, c: &[i64; 4]) -> [i64; 3] {
+        let w = c[3];
+        if w <= 0 {
+            return [0, 0, 0];
+        }
+        let (hw, hh) = (8 * self.w, 8 * self.h);
+        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w).
+        let x = floor_div(2 * c[0] * hw + w, 2 * w) + hw;
+        let y = floor_div(-2 * c[1] * hh + w, 2 * w) + hh;
+        let z = floor_div(2 * c[2] * (1 << 23) + w, 2 * w) + (1 << 23);
+        [
+            (x + 16 * self.origin.x as i64).clamp(-COORD_LIMIT, COORD_LIMIT),
+            (y + 16 * self.origin.y as i64).clamp(-COORD_LIMIT, COORD_LIMIT),
+            z.clamp(-(1 << 30), 1 << 30),
+        ]
+    }
+
+    /// Lights vertex `c` for the given facing unless already done.
+    #[inline]
+    fn light(&self, c: &mut CachedVertex, back: bool, stats: &mut DrawStats) -> Shade {
+        if back {
+            if c.flags & F_BACK == 0 {
+                c.back = self.r.lighting.shade(c.eye, c.normal.neg());
+                c.flags |= F_BACK;
+                stats.lit += 1;
+            }
+            c.back
+        } else {
+            if c.flags & F_FRONT == 0 {
+                c.front = self.r.lighting.shade(c.eye, c.normal);
+                c.flags |= F_FRONT;
+                stats.lit += 1;
+            }
+            c.front
+        }
+    }
+
+    fn triangle<M: ShadingMode, T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+        &self,
+        idx: [usize; 3],
+        cache: &mut [CachedVertex],
+        target: &mut T,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), RenderError<T::Error>> {
+        let d = idx.map(|i| cache[i].clip[2] + cache[i].clip[3]);
+        let inside = d.map(|d| d >= 0);
+        if !inside.iter().any(|&i| i) {
+            return Ok(());
+        }
+        // The polygon after near clipping (Sutherland–Hodgman, one plane).
+        let mut poly = [PolyVert::Orig(0); 4];
+        let mut count = 0;
+        if inside.iter().all(|&i| i) {
+            poly[..3].copy_from_slice(&[PolyVert::Orig(0), PolyVert::Orig(1), PolyVert::Orig(2)]);
+            count = 3;
+        } else {
+            stats.clipped += 1;
+            for a in 0..3 {
+                let b = (a + 1) % 3;
+                if inside[a] {
+                    poly[count] = PolyVert::Orig(a);
+                    count += 1;
+                }
+                if inside[a] != inside[b] {
+                    let (i, o) = if inside[a] { (a, b) } else { (b, a) };
+                    poly[count] = PolyVert::Cut {
+                        a: i,
+                        b: o,
+                        num: d[i],
+                        den: d[i] - d[o],
+                    };
+                    count += 1;
+                }
+            }
+        }
+        let mut win = [[0i64; 3]; 4];
+        for (k, p) in poly[..count].iter().enumerate() {
+            win[k] = match *p {
+                PolyVert::Orig(i) => cache[idx[i]].win,
+                PolyVert::Cut { a, b, num, den } => {
+                    self.window(&cut(&cache[idx[a]].clip, &cache[idx[b]].clip, num, den))
+                }
+            };
+        }
+        // Facing is shared by every piece: decide it (and cull) once, from
+        // the first piece with area.
+        let mut a = 0;
+        for k in 1..count - 1 {
+            let probe = [0, k, k + 1].map(|j| RasterVertex::<0> {
+                x: win[j][0],
+                y: win[j][1],
+                attr: [],
+            });
+            a = area2(&probe);
+            if a != 0 {
+                break;
+            }
+        }
+        // Negative area is a front face (y down).
+        if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&win[..count]) {
+            return Ok(());
+        }
+        let lit_back = a > 0 && self.r.options.two_sided;
+        let poly = &poly[..count];
+        match M::KIND {
+            ShadingKind::Flat => {
+                let e = idx.map(|i| cache[i].eye);
+                let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
+                let n = if lit_back { n.neg() } else { n };
+                let colour = self.r.lighting.shade(centroid(e), n);
+                stats.lit += 1;
+                let verts = raster_verts::<1>(poly, &win, |_| [0]);
+                self.fan(&verts[..count], stats, |t, st| {
+                    self.spans_flat(t, colour, target, depth, st)
+                })
+            }
+            ShadingKind::Gouraud => {
+                let cols = [0, 1, 2].map(|k| self.light(&mut cache[idx[k]], lit_back, stats));
+                let verts = raster_verts::<4>(poly, &win, |i| {
+                    let b = cols[i].to_bits();
+                    // Scaled so that the 5/6-bit channel is `v >> 16`,
+                    // rounded as SPEC.md 6 says: v·31 + ½ (≤ 2^21).
+                    [
+                        0,
+                        (b[0] * 31 + (1 << 15)) as i64,
+                        (b[1] * 63 + (1 << 15)) as i64,
+                        (b[2] * 31 + (1 << 15)) as i64,
+                    ]
+                });
+                self.fan(&verts[..count], stats, |t, st| {
+                    self.spans_gouraud(t, target, depth, st)
+                })
+            }
+            ShadingKind::Phong => {
+                let verts = raster_verts::<7>(poly, &win, |i| {
+                    let c = &cache[idx[i]];
+                    let n = if lit_back { c.normal.neg() } else { c.normal }.to_bits();
+                    let e = c.eye.to_bits();
+                    // Normals get 12 more fractional bits (Q.26, below 2^27).
+                    [
+                        0,
+                        (n[0] as i64) << 12,
+                        (n[1] as i64) << 12,
+                        (n[2] as i64) << 12,
+                        e[0] as i64,
+                        e[1] as i64,
+                        e[2] as i64,
+                    ]
+                });
+                self.fan(&verts[..count], stats, |t, st| {
+                    self.spans_phong(t, target, depth, st)
+                })
+            }
+        }
+    }
+
+    /// Whether the polygon's bounding box meets the target (a cheap test
+    /// before lighting its vertices).
+    fn touches(&self, win: &[[i64; 3]]) -> bool {
+        let minx = win.iter().map(|v| v[0]).min().unwrap_or(0);
+        let maxx = win.iter().map(|v| v[0]).max().unwrap_or(0);
+        let miny = win.iter().map(|v| v[1]).min().unwrap_or(0);
+        let maxy = win.iter().map(|v| v[1]).max().unwrap_or(0);
+        let c = self.clip;
+        maxx >= 16 * c.x0 as i64
+            && minx < 16 * (c.x1 as i64 + 1)
+            && maxy >= 16 * c.y0 as i64
+            && miny < 16 * (c.y1 as i64 + 1)
+    }
+
+    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`.
+    fn fan<const N: usize, E>(
+        &self,
+        verts: &[RasterVertex<N>],
+        stats: &mut DrawStats,
+        mut each: impl FnMut(&Triangle<N>, &mut DrawStats) -> Result<(), E>,
+    ) -> Result<(), E> {
+        for k in 1..verts.len() - 1 {
+            let tri = [verts[0], verts[k], verts[k + 1]];
+            // Culling was decided for the whole polygon; a piece agrees with
+            // it or has no area.
+            if let Some(t) = Triangle::setup(&tri, self.clip, false) {
+                stats.drawn += 1;
+                each(&t, stats)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs the depth test over a span (if there is one), then sends each
+    /// run of passing pixels with one `fill_contiguous`, colours from
+    /// `colour(offset, x)`.
+    #[inline]
+    fn emit<const N: usize, T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+        &self,
+        s: &Span<N>,
+        target: &mut T,
+        depth: &mut D,
+        stats: &mut DrawStats,
+        mut colour: impl FnMut(i64, i32) -> Rgb565,
+    ) -> Result<(), RenderError<T::Error>> {
+        let len = (s.x1 - s.x0 + 1) as u32;
+        let mut send = |x0: i32, n: u32, target: &mut T, stats: &mut DrawStats| {
+            let off = (x0 - s.x0) as i64;
+            let area = Rectangle::new(Point::new(x0, s.y) + self.origin, Size::new(n, 1));
+            stats.pixels += n;
+            target
+                .fill_contiguous(&area, (0..n as i64).map(|k| colour(off + k, x0 + k as i32)))
+                .map_err(RenderError::Target)
+        };
+        if !D::ENABLED {
+            return send(s.x0, len, target, stats);
+        }
+        let row = depth.row(s.y as u32, s.x0 as u32, len);
+        let mut z = s.start[0];
+        let dz = s.step[0];
+        let mut run_start: Option<i32> = None;
+        let mut runs: [(i32, u32); 8] = [(0, 0); 8];
+        let mut nruns = 0;
+        for (k, stored) in row.iter_mut().enumerate() {
+            // z is Q.24 of z_w; the stored depth is Q.16, cleared to 65535.
+            let z16 = (z >> 8).clamp(0, 65535) as u16;
+            let x = s.x0 + k as i32;
+            if z16 < *stored {
+                *stored = z16;
+                run_start.get_or_insert(x);
+            } else if let Some(x0) = run_start.take() {
+                runs[nruns] = (x0, (x - x0) as u32);
+                nruns += 1;
+                if nruns == runs.len() {
+                    for &(x0, n) in &runs {
+                        send(x0, n, target, stats)?;
+                    }
+                    nruns = 0;
+                }
+            }
+            z += dz;
+        }
+        if let Some(x0) = run_start {
+            runs[nruns] = (x0, (s.x1 + 1 - x0) as u32);
+            nruns += 1;
+        }
+        for &(x0, n) in &runs[..nruns] {
+            send(x0, n, target, stats)?;
+        }
+        Ok(())
+    }
+
+    fn spans_flat<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+        &self,
+        t: &Triangle<1>,
+        colour: Shade,
+        target: &mut T,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), RenderError<T::Error>> {
+        let dither = self.r.options.dither;
+        let plain = colour.to_rgb565();
+        let mut res = Ok(());
+        t.for_each_span(|s| {
+            if res.is_ok() {
+                let y = s.y;
+                res = self.emit(s, target, depth, stats, |_, x| {
+                    if dither {
+                        quantise(colour, true, x, y)
+                    } else {
+                        plain
+                    }
+                });
+            }
+        });
+        res
+    }
+
+    fn spans_gouraud<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+        &self,
+        t: &Triangle<4>,
+        target: &mut T,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), RenderError<T::Error>> {
+        let dither = self.r.options.dither;
+        let mut res = Ok(());
+        t.for_each_span(|s| {
+            if res.is_ok() {
+                let y = s.y;
+                res = self.emit(s, target, depth, stats, |k, x| {
+                    // Inside the triangle each value lies between its
+                    // vertex values (in [2^15, 31.5·2^16]) to within the
+                    // stepping error (below 2^12): the shift gives 0..=31
+                    // (0..=63); the clamp guards slivers.
+                    let r = s.start[1] + s.step[1] * k;
+                    let g = s.start[2] + s.step[2] * k;
+                    let b = s.start[3] + s.step[3] * k;
+                    if dither {
+                        let th = BAYER[(y & 3) as usize][(x & 3) as usize] as i64 - (1 << 15);
+                        let q = |v: i64, m: i64| ((v + th) >> 16).clamp(0, m) as u32;
+                        Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(pack565(
+                            q(r, 31),
+                            q(g, 63),
+                            q(b, 31),
+                        )))
+                    } else {
+                        let q = |v: i64, m: i64| (v >> 16).clamp(0, m) as u32;
+                        Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(pack565(
+                            q(r, 31),
+                            q(g, 63),
+                            q(b, 31),
+                        )))
+                    }
+                });
+            }
+        });
+        res
+    }
+
+    fn spans_phong<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+        &self,
+        t: &Triangle<7>,
+        target: &mut T,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), RenderError<T::Error>> {
+        let dither = self.r.options.dither;
+        let mut res = Ok(());
+        t.for_each_span(|s| {
+            if res.is_ok() {
+                let y = s.y;
+                res = self.emit(s, target, depth, stats, |k, x| {
+                    let at = |j: usize| s.start[j] + s.step[j] * k;
+                    // Interpolated normal (Q.26, below 2^27 in magnitude),
+                    // renormalised; eye position saturated to I8F24.
+                    let n = [at(1), at(2), at(3)]
+                        .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32);
+                    let n = normalize(n).unwrap_or(Unit3::ZERO);
+                    let p = [at(4), at(5), at(6)]
+                        .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32);
+                    let c = self.r.lighting.shade(Vec3::from_bits(p[0], p[1], p[2]), n);
+                    quantise(c, dither, x, y)
+                });
+            }
+        });
+        res
+    }
+}
+
+/// Raster vertices of a clipped polygon: window position, depth as
+/// attribute 0, the other attributes from `of` for original vertices and
+/// interpolated along the cut edge (linearly in clip space, as SPEC.md's
+/// clipping does) for new ones.
+fn raster_verts<const N: usize>(
+    poly: &[PolyVert],
+    win: &[[i64; 3]; 4],
+    of: impl Fn(usize) -> [i64; N],
+) -> [RasterVertex<N>; 4] {
+    let mut out = [RasterVertex {
+        x: 0,
+        y: 0,
+        attr: [0i64; N],
+    }; 4];
+    for (k, p) in poly.iter().enumerate() {
+        let mut attr = match *p {
+            PolyVert::Orig(i) => of(i),
+            PolyVert::Cut { a, b, num, den } => {
+                let (va, vb) = (of(a), of(b));
+                let mut m = [0i64; N];
+                for j in 0..N {
+                    m[j] = va[j] + lerp_part(vb[j] - va[j], num, den);
+                }
+                m
+            }
+        };
+        attr[0] = win[k][2];
+        out[k] = RasterVertex {
+            x: win[k][0],
+            y: win[k][1],
+            attr,
+        };
+    }
+    out
+}
