@@ -5,3 +5,12 @@
 pub mod vector;
 
 pub use vector::{Mat4, Unit3, Vec3};
+
+#[cfg(feature = "reference")]
+pub mod error_measure;
+#[cfg(feature = "reference")]
+pub mod generate;
+#[cfg(feature = "reference")]
+pub mod reference;
+#[cfg(feature = "reference")]
+pub mod scene_desc;
