@@ -20,3 +20,12 @@ pub use color::{Rgb, Shade};
 pub use illumination::Lighting;
 pub use material::Material;
 pub use vector::{Mat4, Unit3, Vec3};
+
+#[cfg(feature = "reference")]
+pub mod error_measure;
+#[cfg(feature = "reference")]
+pub mod generate;
+#[cfg(feature = "reference")]
+pub mod reference;
+#[cfg(feature = "reference")]
+pub mod scene_desc;
