@@ -85,6 +85,11 @@ impl Camera {
     /// A look-at view (gluLookAt) with a default 60° perspective, near 0.1,
     /// far 10.
     pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Camera, CameraError> {
+        Camera::look_at_f64(eye.map(f64::from), target.map(f64::from), up.map(f64::from))
+    }
+
+    /// As [`Camera::look_at`], from `f64`s.
+    pub fn look_at_f64(eye: [f64; 3], target: [f64; 3], up: [f64; 3]) -> Result<Camera, CameraError> {
         if eye.iter().chain(&target).chain(&up).any(|v| !v.is_finite()) {
             return Err(CameraError::NotFinite);
         }
@@ -103,7 +108,6 @@ impl Camera {
             }
             Ok([v[0] / len, v[1] / len, v[2] / len])
         };
-        let (eye, target, up) = (eye.map(f64::from), target.map(f64::from), up.map(f64::from));
         let f = unit(sub(target, eye))?;
         let s = unit(cross(f, unit(up)?))?;
         let u = cross(s, f);

@@ -71,8 +71,13 @@ impl Rgb {
     /// negative values are [`FormatError::OutOfRange`]; values above 256
     /// clamp to 256.
     pub fn from_f32(r: f32, g: f32, b: f32) -> Result<Rgb, FormatError> {
+        Rgb::from_f64([r as f64, g as f64, b as f64])
+    }
+
+    /// As [`Rgb::from_f32`], from `f64`s.
+    pub fn from_f64(c: [f64; 3]) -> Result<Rgb, FormatError> {
         Ok(Rgb {
-            c: [chan(r)?, chan(g)?, chan(b)?],
+            c: [chan(c[0])?, chan(c[1])?, chan(c[2])?],
         })
     }
 
@@ -102,7 +107,7 @@ impl Rgb {
     }
 }
 
-fn chan(v: f32) -> Result<u32, FormatError> {
+fn chan(v: f64) -> Result<u32, FormatError> {
     if !v.is_finite() {
         return Err(FormatError::NotFinite);
     }

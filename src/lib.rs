@@ -13,6 +13,8 @@ pub mod mesh;
 pub mod normalize;
 pub mod rasterizer;
 pub mod render;
+#[cfg(feature = "reference")]
+pub mod scene_kernel;
 pub mod specular_table;
 pub mod vector;
 

@@ -65,7 +65,7 @@ impl core::fmt::Display for LightError {
             LightError::ZeroDirection => "light direction or axis has zero length",
             LightError::BadCutoff => "spot cutoff outside [0, 90] degrees",
             LightError::BadExponent => "spot exponent negative or above 4096",
-            LightError::BadSamples => "area light samples_k must be 1 to 16",
+            LightError::BadSamples => "area light samples_k must be 1 to 64",
         })
     }
 }
@@ -106,12 +106,17 @@ impl WidePoint {
 
     /// From floats; NaN/∞ and magnitudes of 2³⁹ or more are errors.
     pub fn from_f32(v: [f32; 3]) -> Result<Self, FormatError> {
+        WidePoint::from_f64(v.map(f64::from))
+    }
+
+    /// As [`WidePoint::from_f32`], from `f64`s.
+    pub fn from_f64(v: [f64; 3]) -> Result<Self, FormatError> {
         let mut c = [0i64; 3];
         for (o, x) in c.iter_mut().zip(v) {
             if !x.is_finite() {
                 return Err(FormatError::NotFinite);
             }
-            if x.abs() >= (1u64 << 39) as f32 {
+            if x.abs() >= (1u64 << 39) as f64 {
                 return Err(FormatError::OutOfRange);
             }
             *o = I40F24::from_num(x).to_bits();
@@ -169,15 +174,20 @@ fn dir_to_eye(view: &Mat4, d: Unit3) -> Unit3 {
 /// assert_eq!(u.to_bits(), [0, 9830, 13107]);
 /// ```
 pub fn unit_from_f32(v: [f32; 3]) -> Result<Unit3, LightError> {
+    unit_from_f64(v.map(f64::from))
+}
+
+/// As [`unit_from_f32`], from `f64`s.
+pub fn unit_from_f64(v: [f64; 3]) -> Result<Unit3, LightError> {
     if v.iter().any(|x| !x.is_finite()) {
         return Err(LightError::NotFinite);
     }
-    let m = v.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if m == 0.0 {
         return Err(LightError::ZeroDirection);
     }
-    // Scale the largest component to ±2^30: the others keep 24 bits.
-    let s = v.map(|x| ((x / m) * (1u32 << 30) as f32) as i32);
+    // Scale the largest component to ±2^30: the others keep 30 bits.
+    let s = v.map(|x| ((x / m) * (1u32 << 30) as f64) as i32);
     normalize(s).ok_or(LightError::ZeroDirection)
 }
 
@@ -239,7 +249,13 @@ impl Attenuation {
 
     /// From floats: each in [0, 2³²); NaN/∞ and negatives are errors.
     pub fn new(c0: f32, c1: f32, c2: f32) -> Result<Self, LightError> {
-        let f = |v: f32| -> Result<U32F32, LightError> {
+        Attenuation::from_f64([c0 as f64, c1 as f64, c2 as f64])
+    }
+
+    /// As [`Attenuation::new`], from `f64`s.
+    pub fn from_f64(c: [f64; 3]) -> Result<Self, LightError> {
+        let [c0, c1, c2] = c;
+        let f = |v: f64| -> Result<U32F32, LightError> {
             if !v.is_finite() {
                 return Err(LightError::NotFinite);
             }
@@ -530,16 +546,24 @@ impl SpotCone {
     /// A cone from an axis, a cutoff in degrees ([0, 90]) and an exponent
     /// ([0, 4096]).
     pub fn new(axis: [f32; 3], cutoff_deg: f32, exponent: f32) -> Result<Self, LightError> {
+        SpotCone::from_f64(axis.map(f64::from), cutoff_deg as f64, exponent as f64)
+    }
+
+    /// As [`SpotCone::new`], from `f64`s.
+    pub fn from_f64(axis: [f64; 3], cutoff_deg: f64, exponent: f64) -> Result<Self, LightError> {
         if !cutoff_deg.is_finite() || !exponent.is_finite() {
             return Err(LightError::NotFinite);
         }
         if !(0.0..=90.0).contains(&cutoff_deg) {
             return Err(LightError::BadCutoff);
         }
+        if !(0.0..=4096.0).contains(&exponent) {
+            return Err(LightError::BadExponent);
+        }
         Ok(SpotCone {
-            axis: unit_from_f32(axis)?,
-            delta_cutoff: one_minus_cos_q28(cutoff_deg as f64),
-            exponent: Exponent::from_f32(exponent).map_err(|_| LightError::BadExponent)?,
+            axis: unit_from_f64(axis)?,
+            delta_cutoff: one_minus_cos_q28(cutoff_deg),
+            exponent: Exponent::from_bits((exponent * 256.0 + 0.5) as u32),
         })
     }
 }
@@ -722,8 +746,8 @@ pub struct AreaLight<A: Falloff = Attenuation> {
 }
 
 impl AreaLight<Attenuation> {
-    /// The largest k: 256 samples.
-    pub const MAX_K: u8 = 16;
+    /// The largest k: 4096 samples.
+    pub const MAX_K: u8 = 64;
 
     /// A white area light, attenuation `(1, 0, 0)`.
     pub fn new(

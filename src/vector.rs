@@ -76,6 +76,11 @@ impl core::fmt::Display for FormatError {
 /// Converts an `f32` to `I8F24`, rounding to nearest; errors for NaN, ±∞ and
 /// values outside [−128, 128).
 pub fn coord_from_f32(v: f32) -> Result<I8F24, FormatError> {
+    coord_from_f64(v as f64)
+}
+
+/// As [`coord_from_f32`], from an `f64`.
+pub fn coord_from_f64(v: f64) -> Result<I8F24, FormatError> {
     if !v.is_finite() {
         return Err(FormatError::NotFinite);
     }
@@ -108,6 +113,15 @@ impl Vec3 {
             x: coord_from_f32(x)?,
             y: coord_from_f32(y)?,
             z: coord_from_f32(z)?,
+        })
+    }
+
+    /// Builds a vector from `f64`s; see [`coord_from_f64`].
+    pub fn from_f64(v: [f64; 3]) -> Result<Self, FormatError> {
+        Ok(Vec3 {
+            x: coord_from_f64(v[0])?,
+            y: coord_from_f64(v[1])?,
+            z: coord_from_f64(v[2])?,
         })
     }
 
@@ -269,13 +283,7 @@ impl Mat4 {
     /// Builds a matrix from `f32` entries (row-major); errors as
     /// [`coord_from_f32`].
     pub fn from_f32(rows: [[f32; 4]; 4]) -> Result<Mat4, FormatError> {
-        let mut m = [[0i32; 4]; 4];
-        for (r, row) in rows.iter().enumerate() {
-            for (c, v) in row.iter().enumerate() {
-                m[r][c] = coord_from_f32(*v)?.to_bits();
-            }
-        }
-        Ok(Mat4 { m })
+        Mat4::from_f64(rows.map(|r| r.map(f64::from)))
     }
 
     /// Builds a matrix from `f64` entries (row-major), rounding to nearest;
@@ -284,12 +292,7 @@ impl Mat4 {
         let mut m = [[0i32; 4]; 4];
         for (r, row) in rows.iter().enumerate() {
             for (c, v) in row.iter().enumerate() {
-                if !v.is_finite() {
-                    return Err(FormatError::NotFinite);
-                }
-                m[r][c] = I8F24::checked_from_num(*v)
-                    .ok_or(FormatError::OutOfRange)?
-                    .to_bits();
+                m[r][c] = coord_from_f64(*v)?.to_bits();
             }
         }
         Ok(Mat4 { m })

@@ -1,0 +1,407 @@
+//! Host only: a [`SceneDesc`] rendered with the fixed-point kernel, the
+//! same scene the f64 reference renders, so that the two can be compared
+//! pixel by pixel.
+//!
+//! [`KernelScene::new`] converts the description once (positions to
+//! `I8F24`, normals to `I2F14`, indices to `u16`, lights to [`AnyLight`]);
+//! [`KernelScene::render`] renders it into a framebuffer, choosing the
+//! kernel's type parameters (specular model, viewer, shading mode, depth
+//! test) from the description's run-time values. A material whose specular
+//! colour is black is rendered with [`NoSpecular`]: it is the same image.
+
+use std::vec;
+use std::vec::Vec;
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::geometry::{Dimensions, OriginDimensions, Size};
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::Pixel;
+
+use crate::camera::{Camera, CameraError, Projection};
+use crate::color::{Rgb, Shade};
+use crate::depth::{DepthBuffer, NoDepth};
+use crate::framebuffer::Framebuffer;
+use crate::illumination::{InfiniteViewer, LocalViewer, Viewer};
+use crate::light::{
+    unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight, SpotCone,
+    SpotLight, WidePoint,
+};
+use crate::material::{BlinnPhong, Material, NoSpecular, Phong, Specular};
+use crate::mesh::{vertex_normals, Mesh, MeshError};
+use crate::render::{CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer};
+use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
+use crate::specular_table::Exponent;
+use crate::vector::{FormatError, Mat4, Unit3, Vec3};
+
+/// The most lights a scene may have here.
+pub const MAX_LIGHTS: usize = 64;
+
+/// Why a scene cannot be rendered by the kernel.
+#[derive(Clone, Debug, PartialEq)]
+pub enum KernelSceneError {
+    /// A value does not fit a kernel format (the field is named).
+    Format(&'static str, FormatError),
+    /// A light could not be built (its index).
+    Light(usize, LightError),
+    /// The camera could not be built.
+    Camera(CameraError),
+    /// More than 65536 vertices, or a mesh error.
+    Mesh(MeshError),
+    /// More than [`MAX_LIGHTS`] lights.
+    TooManyLights,
+    /// The mesh has more vertices than `u16` indices reach.
+    TooManyVertices,
+}
+
+impl core::fmt::Display for KernelSceneError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            KernelSceneError::Format(what, e) => write!(f, "{what}: {e}"),
+            KernelSceneError::Light(i, e) => write!(f, "lights[{i}]: {e}"),
+            KernelSceneError::Camera(e) => write!(f, "camera: {e}"),
+            KernelSceneError::Mesh(e) => write!(f, "mesh: {e}"),
+            KernelSceneError::TooManyLights => write!(f, "lights: more than {MAX_LIGHTS}"),
+            KernelSceneError::TooManyVertices => f.write_str("mesh: more than 65536 vertices"),
+        }
+    }
+}
+
+impl std::error::Error for KernelSceneError {}
+
+/// A scene converted to the kernel's formats.
+#[derive(Clone, Debug)]
+pub struct KernelScene {
+    /// Viewport width.
+    pub width: u32,
+    /// Viewport height.
+    pub height: u32,
+    positions: Vec<Vec3>,
+    normals: Vec<Unit3>,
+    indices: Vec<[u16; 3]>,
+    camera: Camera,
+    model: Mat4,
+    emission: Rgb,
+    ambient: Rgb,
+    diffuse: Rgb,
+    specular: Rgb,
+    shininess: Exponent,
+    global_ambient: Rgb,
+    lights: heapless::Vec<AnyLight, MAX_LIGHTS>,
+    desc: SceneDesc,
+    /// Background colour.
+    pub background: Rgb565,
+}
+
+fn rgb(what: &'static str, c: [f64; 3]) -> Result<Rgb, KernelSceneError> {
+    Rgb::from_f64(c).map_err(|e| KernelSceneError::Format(what, e))
+}
+
+impl KernelScene {
+    /// Converts a description (which should have passed
+    /// [`SceneDesc::validate`]).
+    pub fn new(d: &SceneDesc) -> Result<KernelScene, KernelSceneError> {
+        if d.mesh.positions.len() > 65536 {
+            return Err(KernelSceneError::TooManyVertices);
+        }
+        let positions = d
+            .mesh
+            .positions
+            .iter()
+            .map(|p| Vec3::from_f64(*p))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| KernelSceneError::Format("mesh.positions", e))?;
+        let indices: Vec<[u16; 3]> = d
+            .mesh
+            .indices
+            .iter()
+            .map(|t| t.map(|i| i.min(u16::MAX as u32) as u16))
+            .collect();
+        let normals = match &d.mesh.normals {
+            Some(ns) => ns
+                .iter()
+                .map(|n| unit_from_f64(*n).unwrap_or(Unit3::ZERO))
+                .collect(),
+            None => {
+                let mut sums = vec![[0i32; 3]; positions.len()];
+                let mut out = vec![Unit3::ZERO; positions.len()];
+                vertex_normals(&positions, &indices, &mut sums, &mut out).map_err(KernelSceneError::Mesh)?;
+                out
+            }
+        };
+        let c = &d.camera;
+        let projection = match c.projection {
+            scene_desc::Projection::Perspective { fovy_deg } => Projection::Perspective {
+                fovy_deg: fovy_deg as f32,
+            },
+            scene_desc::Projection::Orthographic { height } => Projection::Orthographic { height: height as f32 },
+        };
+        let camera = Camera::look_at_f64(c.eye, c.target, c.up)
+            .and_then(|cam| cam.with_projection(projection, c.near as f32, c.far as f32))
+            .map_err(KernelSceneError::Camera)?;
+        let model = Mat4::from_f64(d.model).map_err(|e| KernelSceneError::Format("model", e))?;
+        let m = &d.material;
+        let mut lights = heapless::Vec::new();
+        for (i, l) in d.lights.iter().enumerate() {
+            let kl = convert_light(l).map_err(|e| KernelSceneError::Light(i, e))?;
+            lights.push(kl).map_err(|_| KernelSceneError::TooManyLights)?;
+        }
+        Ok(KernelScene {
+            width: d.width,
+            height: d.height,
+            positions,
+            normals,
+            indices,
+            camera,
+            model,
+            emission: rgb("material.emission", m.emission)?,
+            ambient: rgb("material.ambient", m.ambient)?,
+            diffuse: rgb("material.diffuse", m.diffuse)?,
+            specular: rgb("material.specular", m.specular)?,
+            shininess: Exponent::from_bits((m.shininess.clamp(0.0, 4096.0) * 256.0 + 0.5) as u32),
+            global_ambient: rgb("global_ambient", d.global_ambient)?,
+            lights,
+            background: Shade::from_bits(
+                (d.background[0].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+                (d.background[1].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+                (d.background[2].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+            )
+            .to_rgb565(),
+            desc: d.clone(),
+        })
+    }
+
+    /// The mesh in kernel formats.
+    pub fn mesh(&self) -> Mesh<'_> {
+        Mesh::new(&self.positions, &self.indices).with_normals(&self.normals)
+    }
+
+    /// Renders into `target` (after clearing it and `depth` when the scene
+    /// has a depth test). `cache` needs one slot per vertex; `depth` one
+    /// `u16` per pixel if the scene has a depth test.
+    pub fn render<T: DrawTarget<Color = Rgb565>>(
+        &self,
+        target: &mut T,
+        depth: &mut [u16],
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        target.clear(self.background).map_err(RenderError::Target)?;
+        let blinn = self.desc.specular_model == SpecularModel::Blinn;
+        if self.specular.is_black() {
+            self.with_viewer(Material::new(), target, depth, cache)
+        } else if blinn {
+            let s = BlinnPhong {
+                color: self.specular,
+                shininess: self.shininess,
+            };
+            self.with_viewer(Material::new().with_specular(s), target, depth, cache)
+        } else {
+            let s = Phong {
+                color: self.specular,
+                shininess: self.shininess,
+            };
+            self.with_viewer(Material::new().with_specular(s), target, depth, cache)
+        }
+    }
+
+    fn with_viewer<S: Specular, T: DrawTarget<Color = Rgb565>>(
+        &self,
+        m: Material<S>,
+        target: &mut T,
+        depth: &mut [u16],
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        let m = m
+            .with_emission(self.emission)
+            .with_ambient(self.ambient)
+            .with_diffuse(self.diffuse);
+        match self.desc.viewer {
+            scene_desc::Viewer::Infinite => self.draw::<S, InfiniteViewer, T>(&m, target, depth, cache),
+            scene_desc::Viewer::Local => self.draw::<S, LocalViewer, T>(&m, target, depth, cache),
+        }
+    }
+
+    fn draw<S: Specular, V: Viewer, T: DrawTarget<Color = Rgb565>>(
+        &self,
+        m: &Material<S>,
+        target: &mut T,
+        depth: &mut [u16],
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        let options = RenderOptions {
+            cull: self.desc.cull,
+            two_sided: self.desc.two_sided,
+            dither: self.desc.dither,
+        };
+        let r = Renderer::<S, V, _>::new(&self.camera, self.model, m, self.global_ambient, &self.lights, options);
+        let mesh = self.mesh();
+        let size = target.bounding_box().size;
+        use scene_desc::Shading as Sh;
+        if self.desc.depth {
+            let mut db = DepthBuffer::new(depth, size.width, size.height).map_err(|_| RenderError::DepthTooSmall)?;
+            db.clear();
+            match self.desc.shading {
+                Sh::Flat => r.draw::<Flat, _, _>(&mesh, target, &mut db, cache),
+                Sh::Gouraud => r.draw::<Gouraud, _, _>(&mesh, target, &mut db, cache),
+                Sh::Phong => r.draw::<PhongShading, _, _>(&mesh, target, &mut db, cache),
+            }
+        } else {
+            match self.desc.shading {
+                Sh::Flat => r.draw::<Flat, _, _>(&mesh, target, &mut NoDepth, cache),
+                Sh::Gouraud => r.draw::<Gouraud, _, _>(&mesh, target, &mut NoDepth, cache),
+                Sh::Phong => r.draw::<PhongShading, _, _>(&mesh, target, &mut NoDepth, cache),
+            }
+        }
+    }
+
+    /// Renders into fresh buffers and records which pixels were drawn.
+    pub fn render_frame(&self) -> Result<KernelFrame, RenderError<core::convert::Infallible>> {
+        let (w, h) = (self.width, self.height);
+        let n = w as usize * h as usize;
+        let mut pixels = vec![0u16; n];
+        let mut covered = vec![false; n];
+        let mut depth = vec![0u16; n];
+        let mut cache = vec![CachedVertex::default(); self.positions.len()];
+        let stats = {
+            let fb = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::CacheTooSmall)?;
+            let mut rec = CoverageTarget {
+                inner: fb,
+                covered: &mut covered,
+                width: w,
+            };
+            self.render(&mut rec, &mut depth, &mut cache)?
+        };
+        Ok(KernelFrame {
+            width: w,
+            height: h,
+            pixels,
+            covered,
+            stats,
+        })
+    }
+}
+
+fn convert_light(l: &LightDesc) -> Result<AnyLight, LightError> {
+    let rgb = |c: [f64; 3]| Rgb::from_f64(c).map_err(LightError::from);
+    Ok(match l {
+        LightDesc::Directional {
+            direction,
+            diffuse,
+            specular,
+        } => AnyLight::Directional(
+            DirectionalLight::from_unit(unit_from_f64(*direction)?)
+                .with_diffuse(rgb(*diffuse)?)
+                .with_specular(rgb(*specular)?),
+        ),
+        LightDesc::Point {
+            position,
+            diffuse,
+            specular,
+            attenuation,
+        } => AnyLight::Point(point(*position, *diffuse, *specular, *attenuation)?),
+        LightDesc::Spot {
+            position,
+            axis,
+            cutoff_deg,
+            exponent,
+            diffuse,
+            specular,
+            attenuation,
+        } => AnyLight::Spot(SpotLight {
+            light: point(*position, *diffuse, *specular, *attenuation)?,
+            cone: SpotCone::from_f64(*axis, *cutoff_deg, *exponent)?,
+        }),
+        LightDesc::Area {
+            center,
+            edge_u,
+            edge_v,
+            samples_k,
+            diffuse,
+            specular,
+            attenuation,
+        } => {
+            if *samples_k == 0 || *samples_k > AreaLight::MAX_K as u32 {
+                return Err(LightError::BadSamples);
+            }
+            AnyLight::Area(AreaLight {
+                center: WidePoint::from_f64(*center)?,
+                edge_u: WidePoint::from_f64(*edge_u)?,
+                edge_v: WidePoint::from_f64(*edge_v)?,
+                samples_k: *samples_k as u8,
+                diffuse: rgb(*diffuse)?,
+                specular: rgb(*specular)?,
+                attenuation: Attenuation::from_f64(*attenuation)?,
+            })
+        }
+    })
+}
+
+fn point(p: [f64; 3], d: [f64; 3], s: [f64; 3], a: [f64; 3]) -> Result<PointLight, LightError> {
+    Ok(PointLight {
+        position: WidePoint::from_f64(p)?,
+        diffuse: Rgb::from_f64(d)?,
+        specular: Rgb::from_f64(s)?,
+        attenuation: Attenuation::from_f64(a)?,
+    })
+}
+
+/// A kernel frame: raw RGB565 pixels, which pixels the kernel drew, and
+/// the draw counts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct KernelFrame {
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// Raw RGB565, row-major.
+    pub pixels: Vec<u16>,
+    /// `true` where the kernel sent a pixel.
+    pub covered: Vec<bool>,
+    /// Counts.
+    pub stats: DrawStats,
+}
+
+/// A framebuffer that also records which pixels were written (through
+/// `fill_contiguous`, the only way the renderer writes).
+pub struct CoverageTarget<'a, 'b> {
+    /// The framebuffer.
+    pub inner: Framebuffer<'a>,
+    /// One flag per pixel.
+    pub covered: &'b mut [bool],
+    /// Row length.
+    pub width: u32,
+}
+
+impl OriginDimensions for CoverageTarget<'_, '_> {
+    fn size(&self) -> Size {
+        self.inner.size()
+    }
+}
+
+impl DrawTarget for CoverageTarget<'_, '_> {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Self::Error> {
+        let bb = self.inner.bounding_box();
+        let w = self.width as usize;
+        let cov = &mut *self.covered;
+        self.inner.draw_iter(pixels.into_iter().inspect(|Pixel(p, _)| {
+            if bb.contains(*p) {
+                cov[p.y as usize * w + p.x as usize] = true;
+            }
+        }))
+    }
+
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error> {
+        let a = area.intersection(&self.inner.bounding_box());
+        for p in embedded_graphics::primitives::PointsIter::points(&a) {
+            self.covered[p.y as usize * self.width as usize + p.x as usize] = true;
+        }
+        self.inner.fill_contiguous(area, colors)
+    }
+
+    fn clear(&mut self, color: Rgb565) -> Result<(), Self::Error> {
+        self.inner.clear(color)
+    }
+}
