@@ -2,6 +2,8 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
+pub mod specular_table;
 pub mod vector;
 
+pub use specular_table::Exponent;
 pub use vector::{Mat4, Unit3, Vec3};
