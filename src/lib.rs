@@ -21,6 +21,7 @@ pub mod vector;
 pub use color::{Rgb, Shade};
 pub use illumination::Lighting;
 pub use material::Material;
+pub use specular_table::Exponent;
 pub use vector::{Mat4, Unit3, Vec3};
 
 #[cfg(feature = "reference")]
