@@ -27,7 +27,7 @@ use crate::light::{
     unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight, SpotCone,
     SpotLight, WidePoint,
 };
-use crate::material::{BlinnPhong, Material, NoSpecular, Phong, Specular};
+use crate::material::{BlinnPhong, Material, Phong, Specular};
 use crate::mesh::{vertex_normals, Mesh, MeshError};
 use crate::render::{CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer};
 use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
