@@ -2,6 +2,7 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
+pub mod normalize;
 pub mod vector;
 
 pub use vector::{Mat4, Unit3, Vec3};
