@@ -89,7 +89,11 @@ impl Camera {
     }
 
     /// As [`Camera::look_at`], from `f64`s.
-    pub fn look_at_f64(eye: [f64; 3], target: [f64; 3], up: [f64; 3]) -> Result<Camera, CameraError> {
+    pub fn look_at_f64(
+        eye: [f64; 3],
+        target: [f64; 3],
+        up: [f64; 3],
+    ) -> Result<Camera, CameraError> {
         if eye.iter().chain(&target).chain(&up).any(|v| !v.is_finite()) {
             return Err(CameraError::NotFinite);
         }

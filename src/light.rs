@@ -17,7 +17,7 @@
 //! # Spaces and formats
 //! Light positions and directions are given in **world space**; preparing a
 //! light for a frame ([`LightSet::prepare`]) takes them to eye space with the
-//! view matrix. Positions are [`WidePoint`]s (`I40F24`: range ±2³⁹, 2⁻²⁴
+//! view matrix. Positions are [`WidePoint`]s (`I40F24`: range ±2³⁸, 2⁻²⁴
 //! resolution), so a light 10⁴ units away and one 10⁻³ units from the
 //! surface are both represented well; the vector from a surface point to the
 //! light is formed in `i64` and normalised with its length.
@@ -70,8 +70,8 @@ impl core::fmt::Display for LightError {
     }
 }
 
-/// A point (or displacement) with `I40F24` components: range ±2³⁹ (about
-/// ±5.5·10¹¹), resolution 2⁻²⁴. Used for light positions.
+/// A point (or displacement) with `I40F24` components: range ±2³⁸ (about
+/// ±2.7·10¹¹), resolution 2⁻²⁴. Used for light positions.
 ///
 /// ```
 /// use fixshade::light::WidePoint;
@@ -83,18 +83,18 @@ pub struct WidePoint {
     c: [i64; 3],
 }
 
-/// The largest magnitude of a [`WidePoint`] component, in raw units (2³⁹
-/// in value): sums and differences of two stay far below 2⁶³.
-const WIDE_MAX: i64 = 1 << 63 >> 1 >> 24;
+/// The largest magnitude of a [`WidePoint`] component in raw units: 2⁶²
+/// (2³⁸ ≈ 2.7·10¹¹ in value), so a difference of two stays below 2⁶³.
+const WIDE_LIMIT: i64 = 1 << 62;
 
 impl WidePoint {
-    /// From raw `I40F24` bits, each clamped to ±2⁶².
+    /// From raw `I40F24` bits, each clamped to ±2⁶² (±2³⁸ in value).
     pub const fn from_bits(x: i64, y: i64, z: i64) -> Self {
         const fn cl(v: i64) -> i64 {
-            if v > WIDE_MAX << 24 {
-                WIDE_MAX << 24
-            } else if v < -(WIDE_MAX << 24) {
-                -(WIDE_MAX << 24)
+            if v > WIDE_LIMIT {
+                WIDE_LIMIT
+            } else if v < -(WIDE_LIMIT) {
+                -(WIDE_LIMIT)
             } else {
                 v
             }
@@ -104,7 +104,7 @@ impl WidePoint {
         }
     }
 
-    /// From floats; NaN/∞ and magnitudes of 2³⁹ or more are errors.
+    /// From floats; NaN/∞ and magnitudes of 2³⁸ or more are errors.
     pub fn from_f32(v: [f32; 3]) -> Result<Self, FormatError> {
         WidePoint::from_f64(v.map(f64::from))
     }
@@ -116,7 +116,7 @@ impl WidePoint {
             if !x.is_finite() {
                 return Err(FormatError::NotFinite);
             }
-            if x.abs() >= (1u64 << 39) as f64 {
+            if x.abs() >= (1u64 << 38) as f64 {
                 return Err(FormatError::OutOfRange);
             }
             *o = I40F24::from_num(x).to_bits();
@@ -153,7 +153,7 @@ fn point_to_eye(view: &Mat4, p: [i64; 3], w: bool) -> [i64; 3] {
             acc += (m[3] as i128) << COORD_FRAC;
         }
         let v = (acc + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
-        *o = v.clamp(-(WIDE_MAX << 24) as i128, (WIDE_MAX << 24) as i128) as i64;
+        *o = v.clamp(-(WIDE_LIMIT) as i128, (WIDE_LIMIT) as i128) as i64;
     }
     out
 }

@@ -24,12 +24,14 @@ use crate::depth::{DepthBuffer, NoDepth};
 use crate::framebuffer::Framebuffer;
 use crate::illumination::{InfiniteViewer, LocalViewer, Viewer};
 use crate::light::{
-    unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight, SpotCone,
-    SpotLight, WidePoint,
+    unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight,
+    SpotCone, SpotLight, WidePoint,
 };
 use crate::material::{BlinnPhong, Material, Phong, Specular};
 use crate::mesh::{vertex_normals, Mesh, MeshError};
-use crate::render::{CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer};
+use crate::render::{
+    CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer,
+};
 use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
 use crate::specular_table::Exponent;
 use crate::vector::{FormatError, Mat4, Unit3, Vec3};
@@ -125,7 +127,8 @@ impl KernelScene {
             None => {
                 let mut sums = vec![[0i32; 3]; positions.len()];
                 let mut out = vec![Unit3::ZERO; positions.len()];
-                vertex_normals(&positions, &indices, &mut sums, &mut out).map_err(KernelSceneError::Mesh)?;
+                vertex_normals(&positions, &indices, &mut sums, &mut out)
+                    .map_err(KernelSceneError::Mesh)?;
                 out
             }
         };
@@ -134,7 +137,9 @@ impl KernelScene {
             scene_desc::Projection::Perspective { fovy_deg } => Projection::Perspective {
                 fovy_deg: fovy_deg as f32,
             },
-            scene_desc::Projection::Orthographic { height } => Projection::Orthographic { height: height as f32 },
+            scene_desc::Projection::Orthographic { height } => Projection::Orthographic {
+                height: height as f32,
+            },
         };
         let camera = Camera::look_at_f64(c.eye, c.target, c.up)
             .and_then(|cam| cam.with_projection(projection, c.near as f32, c.far as f32))
@@ -144,7 +149,9 @@ impl KernelScene {
         let mut lights = heapless::Vec::new();
         for (i, l) in d.lights.iter().enumerate() {
             let kl = convert_light(l).map_err(|e| KernelSceneError::Light(i, e))?;
-            lights.push(kl).map_err(|_| KernelSceneError::TooManyLights)?;
+            lights
+                .push(kl)
+                .map_err(|_| KernelSceneError::TooManyLights)?;
         }
         Ok(KernelScene {
             width: d.width,
@@ -216,7 +223,9 @@ impl KernelScene {
             .with_ambient(self.ambient)
             .with_diffuse(self.diffuse);
         match self.desc.viewer {
-            scene_desc::Viewer::Infinite => self.draw::<S, InfiniteViewer, T>(&m, target, depth, cache),
+            scene_desc::Viewer::Infinite => {
+                self.draw::<S, InfiniteViewer, T>(&m, target, depth, cache)
+            }
             scene_desc::Viewer::Local => self.draw::<S, LocalViewer, T>(&m, target, depth, cache),
         }
     }
@@ -233,12 +242,20 @@ impl KernelScene {
             two_sided: self.desc.two_sided,
             dither: self.desc.dither,
         };
-        let r = Renderer::<S, V, _>::new(&self.camera, self.model, m, self.global_ambient, &self.lights, options);
+        let r = Renderer::<S, V, _>::new(
+            &self.camera,
+            self.model,
+            m,
+            self.global_ambient,
+            &self.lights,
+            options,
+        );
         let mesh = self.mesh();
         let size = target.bounding_box().size;
         use scene_desc::Shading as Sh;
         if self.desc.depth {
-            let mut db = DepthBuffer::new(depth, size.width, size.height).map_err(|_| RenderError::DepthTooSmall)?;
+            let mut db = DepthBuffer::new(depth, size.width, size.height)
+                .map_err(|_| RenderError::DepthTooSmall)?;
             db.clear();
             match self.desc.shading {
                 Sh::Flat => r.draw::<Flat, _, _>(&mesh, target, &mut db, cache),
@@ -382,18 +399,26 @@ impl DrawTarget for CoverageTarget<'_, '_> {
     type Color = Rgb565;
     type Error = core::convert::Infallible;
 
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Self::Error> {
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
         let bb = self.inner.bounding_box();
         let w = self.width as usize;
         let cov = &mut *self.covered;
-        self.inner.draw_iter(pixels.into_iter().inspect(|Pixel(p, _)| {
-            if bb.contains(*p) {
-                cov[p.y as usize * w + p.x as usize] = true;
-            }
-        }))
+        self.inner
+            .draw_iter(pixels.into_iter().inspect(|Pixel(p, _)| {
+                if bb.contains(*p) {
+                    cov[p.y as usize * w + p.x as usize] = true;
+                }
+            }))
     }
 
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error> {
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+        &mut self,
+        area: &Rectangle,
+        colors: I,
+    ) -> Result<(), Self::Error> {
         let a = area.intersection(&self.inner.bounding_box());
         for p in embedded_graphics::primitives::PointsIter::points(&a) {
             self.covered[p.y as usize * self.width as usize + p.x as usize] = true;

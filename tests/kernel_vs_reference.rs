@@ -1,0 +1,97 @@
+//! The kernel against the f64 reference, pixel by pixel (SPEC.md 7), on
+//! real scenes.
+
+mod common;
+
+use common::{assert_within_bound, kernel_vs_reference, s1, s4};
+use fixshade::generate;
+use fixshade::scene_desc::{
+    CameraDesc, LightDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
+};
+
+#[test]
+fn sphere_gouraud_directional_s1() {
+    let (e, k) = kernel_vs_reference(&s1(320, 240, 48, 24));
+    assert_within_bound("S1 sphere gouraud", &e);
+    assert!(e.exact_share >= 0.99, "exact share {:.4}", e.exact_share);
+    assert!(k.stats.pixels > 10_000);
+}
+
+#[test]
+fn sphere_phong_shading() {
+    let mut s = s1(320, 240, 48, 24);
+    s.shading = Shading::Phong;
+    let (e, _) = kernel_vs_reference(&s);
+    assert_within_bound("sphere phong", &e);
+    assert!(e.exact_share >= 0.98, "exact share {:.4}", e.exact_share);
+}
+
+#[test]
+fn sphere_phong_specular_local_viewer() {
+    let mut s = s1(200, 150, 32, 16);
+    s.shading = Shading::Phong;
+    s.specular_model = SpecularModel::Phong;
+    s.viewer = Viewer::Local;
+    s.material.shininess = 200.0;
+    let (e, _) = kernel_vs_reference(&s);
+    assert_within_bound("sphere phong (R.V)^200 local", &e);
+}
+
+#[test]
+fn bunny_point_and_spot() {
+    let (e, _) = kernel_vs_reference(&s4(320, 240));
+    assert_within_bound("S4 bunny phong", &e);
+    let mut g = s4(320, 240);
+    g.shading = Shading::Gouraud;
+    let (e, _) = kernel_vs_reference(&g);
+    assert_within_bound("bunny gouraud", &e);
+}
+
+#[test]
+fn cube_flat() {
+    let camera = CameraDesc {
+        eye: [2.0, 1.5, 3.0],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        near: 0.1,
+        far: 20.0,
+        projection: Projection::Perspective { fovy_deg: 50.0 },
+    };
+    let mut s = SceneDesc::new(160, 120, camera, generate::cube(1.5));
+    s.shading = Shading::Flat;
+    s.lights = vec![LightDesc::point([3.0, 4.0, 2.0])];
+    let (e, _) = kernel_vs_reference(&s);
+    assert_within_bound("cube flat", &e);
+}
+
+#[test]
+fn plane_crossing_near_plane() {
+    // A floor that starts behind the camera and runs past it: every
+    // triangle near the eye crosses the near plane.
+    let camera = CameraDesc {
+        eye: [0.0, 0.5, 0.0],
+        target: [0.0, 0.3, -2.0],
+        up: [0.0, 1.0, 0.0],
+        near: 0.1,
+        far: 30.0,
+        projection: Projection::Perspective { fovy_deg: 70.0 },
+    };
+    let mut floor = generate::plane(20.0, 8);
+    // The generator's plane faces +Z in XY; lay it down (y = 0, facing +Y).
+    for p in &mut floor.positions {
+        *p = [p[0], 0.0, -p[1]];
+    }
+    if let Some(ns) = &mut floor.normals {
+        for n in ns.iter_mut() {
+            *n = [0.0, 1.0, 0.0];
+        }
+    }
+    let mut s = SceneDesc::new(200, 150, camera, floor);
+    s.lights = vec![LightDesc::directional([0.3, 1.0, 0.2])];
+    for shading in [Shading::Gouraud, Shading::Phong, Shading::Flat] {
+        s.shading = shading;
+        let (e, k) = kernel_vs_reference(&s);
+        assert!(k.stats.clipped > 0, "nothing crossed the near plane");
+        assert_within_bound(&format!("near-plane floor {shading:?}"), &e);
+    }
+}
