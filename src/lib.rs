@@ -32,3 +32,5 @@ pub mod generate;
 pub mod reference;
 #[cfg(feature = "reference")]
 pub mod scene_desc;
+#[cfg(feature = "reference")]
+pub mod standard_scenes;

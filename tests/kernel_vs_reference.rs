@@ -3,15 +3,16 @@
 
 mod common;
 
-use common::{assert_within_bound, kernel_vs_reference, s1, s4};
+use common::{assert_within_bound, kernel_vs_reference};
 use fixshade::generate;
 use fixshade::scene_desc::{
     CameraDesc, LightDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
 };
+use fixshade::standard_scenes::{s1, s2, s3, s4, sphere_scene};
 
 #[test]
 fn sphere_gouraud_directional_s1() {
-    let (e, k) = kernel_vs_reference(&s1(320, 240, 48, 24));
+    let (e, k) = kernel_vs_reference(&s1(320, 240));
     assert_within_bound("S1 sphere gouraud", &e);
     assert!(e.exact_share >= 0.99, "exact share {:.4}", e.exact_share);
     assert!(k.stats.pixels > 10_000);
@@ -19,7 +20,7 @@ fn sphere_gouraud_directional_s1() {
 
 #[test]
 fn sphere_phong_shading() {
-    let mut s = s1(320, 240, 48, 24);
+    let mut s = s1(320, 240);
     s.shading = Shading::Phong;
     let (e, _) = kernel_vs_reference(&s);
     assert_within_bound("sphere phong", &e);
@@ -28,7 +29,7 @@ fn sphere_phong_shading() {
 
 #[test]
 fn sphere_phong_specular_local_viewer() {
-    let mut s = s1(200, 150, 32, 16);
+    let mut s = sphere_scene(200, 150, 32, 16);
     s.shading = Shading::Phong;
     s.specular_model = SpecularModel::Phong;
     s.viewer = Viewer::Local;
@@ -94,4 +95,17 @@ fn plane_crossing_near_plane() {
         assert!(k.stats.clipped > 0, "nothing crossed the near plane");
         assert_within_bound(&format!("near-plane floor {shading:?}"), &e);
     }
+}
+
+#[test]
+fn quad_fill_s2_and_fine_sphere_s3() {
+    let (e, k) = kernel_vs_reference(&s2(320, 240));
+    assert_within_bound("S2 quad", &e);
+    assert_eq!(
+        k.stats.pixels,
+        320 * 240,
+        "the quad covers every pixel once"
+    );
+    let (e, _) = kernel_vs_reference(&s3(320, 240));
+    assert_within_bound("S3 sphere 192x96", &e);
 }
