@@ -107,7 +107,7 @@ impl Camera {
         };
         let unit = |v: [f64; 3]| -> Result<[f64; 3], CameraError> {
             let len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-            if !(len > 1e-12) || !len.is_finite() {
+            if len.is_nan() || len <= 1e-12 || !len.is_finite() {
                 return Err(CameraError::Degenerate);
             }
             Ok([v[0] / len, v[1] / len, v[2] / len])
@@ -154,7 +154,7 @@ impl Camera {
         if !near.is_finite() || !far.is_finite() {
             return Err(CameraError::NotFinite);
         }
-        if !ok || !(near > 0.0) || !(far > near) || far >= 128.0 {
+        if !ok || near.is_nan() || far.is_nan() || near <= 0.0 || far <= near || far >= 128.0 {
             return Err(CameraError::BadProjection);
         }
         self.projection = projection;
@@ -224,7 +224,7 @@ impl Camera {
 /// `√x` in `f64` to the last bit or so: Newton's iteration from a guess
 /// made by halving the exponent (no libm in `no_std`; used once per frame).
 fn sqrt(x: f64) -> f64 {
-    if !(x > 0.0) || !x.is_finite() {
+    if x.is_nan() || x <= 0.0 || !x.is_finite() {
         return if x == 0.0 { 0.0 } else { f64::NAN };
     }
     let mut g = f64::from_bits((x.to_bits() >> 1) + (1023u64 << 51));

@@ -63,6 +63,16 @@ impl<'a> Framebuffer<'a> {
         Some(Rgb565::from(RawU16::new(raw)))
     }
 
+    /// Row `y` from column `x0`, `n` pixels, if all of it is inside.
+    #[inline]
+    pub fn row_mut(&mut self, y: u32, x0: u32, n: usize) -> Option<&mut [u16]> {
+        if y >= self.height || x0 as usize + n > self.width as usize {
+            return None;
+        }
+        let start = y as usize * self.width as usize + x0 as usize;
+        self.buf.get_mut(start..start + n)
+    }
+
     /// The part of `area` inside the buffer, as (x0, y0, width, height).
     fn clip(&self, area: &Rectangle) -> Option<(usize, usize, usize, usize)> {
         let a = area.intersection(&self.bounding_box());

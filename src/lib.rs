@@ -15,6 +15,7 @@ pub mod rasterizer;
 pub mod render;
 #[cfg(feature = "reference")]
 pub mod scene_kernel;
+pub mod span;
 pub mod specular_table;
 pub mod vector;
 

@@ -92,56 +92,104 @@ pub fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
     (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x)
 }
 
+/// One edge's bound on the span, stepped row by row without division.
+///
+/// For edge `a → b` and row sample `ys`, `E(px) = K − dy·px` with
+/// `K = dx·(ys − a.y) + dy·a.x`. The columns it admits are
+/// `x ≥ ⌈(−K − 8m)/(16m)⌉` for `dy = −m < 0` (top-left: `E ≥ 0`) and
+/// `x ≤ ⌊(K − 8dy − [not top-left])/(16dy)⌋` for `dy > 0` (`E > 0`, i.e.
+/// `E ≥ 1`; such an edge is never top-left). The two nested divisions of
+/// `px = 16x + 8` fold into one (`⌈⌈a/m⌉/16⌉ = ⌈a/16m⌉`). From row to row
+/// the numerator moves by a constant, so the quotient is kept with its
+/// remainder (a DDA): exact, two divisions per edge per triangle.
 #[derive(Clone, Copy, Debug)]
 struct Edge {
-    ax: i64,
-    ay: i64,
-    dx: i64,
-    dy: i64,
+    /// 0: horizontal, 1: bounds from the left (x ≥ q or q + 1), 2: bounds
+    /// from the right (x ≤ q).
+    kind: u8,
+    /// Whether the edge is top or left (decides samples exactly on it).
     top_left: bool,
+    /// Horizontal edges: `K` of the current row and its step.
+    k: i64,
+    dk: i64,
+    /// Quotient and remainder of the current row's bound, `0 ≤ r < den`.
+    q: i64,
+    r: i64,
+    /// Per-row step of quotient and remainder.
+    dq: i64,
+    dr: i64,
+    den: i64,
 }
 
 impl Edge {
-    fn new(a: (i64, i64), b: (i64, i64)) -> Edge {
+    /// The edge `a → b` starting at row sample `ys`.
+    fn new(a: (i64, i64), b: (i64, i64), ys: i64) -> Edge {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        Edge {
-            ax: a.0,
-            ay: a.1,
-            dx,
-            dy,
-            top_left: dy < 0 || (dy == 0 && dx > 0),
+        let top_left = dy < 0 || (dy == 0 && dx > 0);
+        // |K| < 2^59 (coordinates within ±2^28).
+        let k = dx * (ys - a.1) + dy * a.0;
+        let dk = 16 * dx;
+        let mut e = Edge {
+            kind: 0,
+            top_left,
+            k,
+            dk,
+            q: 0,
+            r: 0,
+            dq: 0,
+            dr: 0,
+            den: 1,
+        };
+        if dy == 0 {
+            return e;
+        }
+        // Numerator N and its per-row step, so that the bound is ⌈N/den⌉
+        // (left) or ⌊N/den⌋ (right).
+        let (n, dn, den, kind) = if dy < 0 {
+            let m = -dy;
+            (-k - 8 * m, -dk, 16 * m, 1)
+        } else {
+            (k - 8 * dy - 1, dk, 16 * dy, 2)
+        };
+        let (q, r) = (floor_div(n, den), n - floor_div(n, den) * den);
+        let (dq, dr) = (floor_div(dn, den), dn - floor_div(dn, den) * den);
+        e.kind = kind;
+        e.q = q;
+        e.r = r;
+        e.dq = dq;
+        e.dr = dr;
+        e.den = den;
+        e
+    }
+
+    /// Narrows `[lo, hi]` to the columns this edge admits on the current
+    /// row. Returns `false` if none.
+    #[inline(always)]
+    fn bound(&self, lo: &mut i64, hi: &mut i64) -> bool {
+        match self.kind {
+            0 => self.k > 0 || (self.k == 0 && self.top_left),
+            1 => {
+                // ⌈N/den⌉ = q + (r > 0).
+                *lo = (*lo).max(self.q + (self.r > 0) as i64);
+                true
+            }
+            _ => {
+                *hi = (*hi).min(self.q);
+                true
+            }
         }
     }
 
-    /// Narrows `[lo, hi]` (pixel columns) to the samples of row sample
-    /// `ys` that this edge admits. Returns `false` if none.
-    #[inline]
-    fn bound(&self, ys: i64, lo: &mut i64, hi: &mut i64) -> bool {
-        // E(px) = K − dy·px, |K| < 2^59.
-        let k = self.dx * (ys - self.ay) + self.dy * self.ax;
-        if self.dy == 0 {
-            return k > 0 || (k == 0 && self.top_left);
+    /// Moves to the next row.
+    #[inline(always)]
+    fn step(&mut self) {
+        self.k += self.dk;
+        self.q += self.dq;
+        self.r += self.dr;
+        if self.r >= self.den {
+            self.r -= self.den;
+            self.q += 1;
         }
-        if self.dy < 0 {
-            // E = K + m·px, m > 0: px ≥ −K/m (top-left), px > −K/m otherwise.
-            let m = -self.dy;
-            let px_min = if self.top_left {
-                ceil_div(-k, m)
-            } else {
-                floor_div(-k, m) + 1
-            };
-            // 16x + 8 ≥ px_min.
-            *lo = (*lo).max(ceil_div(px_min - 8, 16));
-        } else {
-            // E = K − dy·px: px ≤ K/dy (top-left), px < K/dy otherwise.
-            let px_max = if self.top_left {
-                floor_div(k, self.dy)
-            } else {
-                ceil_div(k, self.dy) - 1
-            };
-            *hi = (*hi).min(floor_div(px_max - 8, 16));
-        }
-        true
     }
 }
 
@@ -190,6 +238,13 @@ impl Recip {
             m: ((1u64 << 63) / a32) as i128,
             sh: (63 + e) as u32,
         }
+    }
+
+    /// As [`Recip::div`] for `|num| < 2⁶³`: one 64 × 64 → 128-bit multiply.
+    #[inline]
+    fn div_i64(self, num: i64, up: u32) -> i128 {
+        let sh = self.sh - up;
+        ((num as i128) * (self.m as i64 as i128) + (1i128 << (sh - 1))) >> sh
     }
 
     /// `round(num · 2^up / a)`; `|num| < 2⁹⁴` keeps the product below 2¹²⁶.
@@ -296,10 +351,11 @@ impl<const N: usize> Triangle<N> {
         if x_lo > x_hi || y_lo > y_hi {
             return None;
         }
+        let ys0 = 16 * y_lo + 8;
         let edges = [
-            Edge::new((v[0].x, v[0].y), (v[1].x, v[1].y)),
-            Edge::new((v[1].x, v[1].y), (v[2].x, v[2].y)),
-            Edge::new((v[2].x, v[2].y), (v[0].x, v[0].y)),
+            Edge::new((v[0].x, v[0].y), (v[1].x, v[1].y), ys0),
+            Edge::new((v[1].x, v[1].y), (v[2].x, v[2].y), ys0),
+            Edge::new((v[2].x, v[2].y), (v[0].x, v[0].y), ys0),
         ];
         let r = Recip::new(a);
         // Sample at the origin pixel, relative to each vertex.
@@ -308,20 +364,39 @@ impl<const N: usize> Triangle<N> {
         let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
         let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
         let mut exact = false;
+        // Small: bounding box within 256 pixels (2^12 sub-pixels) a side.
+        let small = maxx - minx < 1 << 12 && maxy - miny < 1 << 12;
         let mut origin = [0i64; N];
         let mut ddx = [0i64; N];
         let mut ddy = [0i64; N];
         for i in 0..N {
-            let d1 = (v[1].attr[i] - v[0].attr[i]) as i128;
-            let d2 = (v[2].attr[i] - v[0].attr[i]) as i128;
-            // |d| < 2^34 and |Y diffs| < 2^30: numerators below 2^65.
-            let nx = d1 * (v[2].y - v[0].y) as i128 + d2 * (v[0].y - v[1].y) as i128;
-            let ny = d1 * (v[0].x - v[2].x) as i128 + d2 * (v[1].x - v[0].x) as i128;
-            let (gx, gy) = (r.div(nx, SUBPIXEL_BITS), r.div(ny, SUBPIXEL_BITS));
+            let d1 = v[1].attr[i] - v[0].attr[i];
+            let d2 = v[2].attr[i] - v[0].attr[i];
+            let (gx, gy) = if small {
+                // |d| < 2^34, coordinate differences < 2^12: below 2^47.
+                let nx = d1 * (v[2].y - v[0].y) + d2 * (v[0].y - v[1].y);
+                let ny = d1 * (v[0].x - v[2].x) + d2 * (v[1].x - v[0].x);
+                (r.div_i64(nx, SUBPIXEL_BITS), r.div_i64(ny, SUBPIXEL_BITS))
+            } else {
+                // Below 2^65: i128.
+                let (d1, d2) = (d1 as i128, d2 as i128);
+                let nx = d1 * (v[2].y - v[0].y) as i128 + d2 * (v[0].y - v[1].y) as i128;
+                let ny = d1 * (v[0].x - v[2].x) as i128 + d2 * (v[1].x - v[0].x) as i128;
+                (r.div(nx, SUBPIXEL_BITS), r.div(ny, SUBPIXEL_BITS))
+            };
             exact |= gx.unsigned_abs() > STEEP || gy.unsigned_abs() > STEEP;
             ddx[i] = gx.clamp(-(STEEP as i128), STEEP as i128) as i64;
             ddy[i] = gy.clamp(-(STEEP as i128), STEEP as i128) as i64;
-            origin[i] = plane_at(&v, r, i, e20, e01);
+            origin[i] = if small && !exact {
+                // From vertex 0 along the gradients: the origin is within
+                // 256 px (4096 sub-pixels) of it, |gradient| ≤ 2^40, so the
+                // products stay below 2^53; the gradients' rounding (½ unit)
+                // moves the result by at most 128 units.
+                let t = ddx[i] * (sx - v[0].x) + ddy[i] * (sy - v[0].y);
+                v[0].attr[i] + ((t + 8) >> 4)
+            } else {
+                plane_at(&v, r, i, e20, e01)
+            };
         }
         Some(Triangle {
             edges,
@@ -343,15 +418,15 @@ impl<const N: usize> Triangle<N> {
     #[inline]
     pub fn for_each_span(&self, mut f: impl FnMut(&Span<N>)) {
         let mut row = self.origin;
+        let mut edges = self.edges;
         for y in self.y_lo..=self.y_hi {
-            let ys = 16 * y + 8;
             let (mut lo, mut hi) = (self.x_lo, self.x_hi);
-            let inside = self.edges.iter().all(|e| e.bound(ys, &mut lo, &mut hi));
+            let inside = edges.iter().all(|e| e.bound(&mut lo, &mut hi));
             if inside && lo <= hi {
                 let mut start = row;
                 if self.exact {
                     let v = &self.verts;
-                    let (sx, sy) = (16 * lo + 8, ys);
+                    let (sx, sy) = (16 * lo + 8, 16 * y + 8);
                     let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
                     let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
                     for (i, s) in start.iter_mut().enumerate() {
@@ -359,8 +434,8 @@ impl<const N: usize> Triangle<N> {
                     }
                 } else {
                     let off = lo - self.x_lo;
-                    for i in 0..N {
-                        start[i] += self.ddx[i] * off;
+                    for (s, d) in start.iter_mut().zip(&self.ddx) {
+                        *s += d * off;
                     }
                 }
                 f(&Span {
@@ -372,9 +447,12 @@ impl<const N: usize> Triangle<N> {
                 });
             }
             if !self.exact {
-                for i in 0..N {
-                    row[i] += self.ddy[i];
+                for (r, d) in row.iter_mut().zip(&self.ddy) {
+                    *r += d;
                 }
+            }
+            for e in edges.iter_mut() {
+                e.step();
             }
         }
     }

@@ -23,20 +23,26 @@
 //! stack (a few hundred bytes per shading mode); no recursion, no heap.
 
 use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::geometry::OriginDimensions;
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::prelude::{Point, Size};
-use embedded_graphics::primitives::Rectangle;
+use embedded_graphics::prelude::{RawData, Size};
 
 use crate::camera::{Camera, CameraError, ProjectionCoeffs};
-use crate::color::{pack565, Rgb, Shade};
+use crate::color::{Rgb, Shade};
 use crate::depth::DepthTest;
 pub use crate::depth::NoDepth;
+use crate::framebuffer::Framebuffer;
 use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::rasterizer::{area2, ClipRect, RasterVertex, Span, Triangle, COORD_LIMIT};
+use crate::span::{
+    emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PhongPixels, PixelSink,
+    SpanShader, TargetSink,
+};
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
 
 /// Which shading mode a type selects.
@@ -255,13 +261,51 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         T: DrawTarget<Color = Rgb565>,
         D: DepthTest,
     {
+        let bb = target.bounding_box();
+        let mut sink = TargetSink {
+            target,
+            origin: bb.top_left,
+        };
+        self.draw_into::<M, _, D>(mesh, &mut sink, bb.size, depth, cache)
+    }
+
+    /// As [`Renderer::draw`], into a [`Framebuffer`] written in place: the
+    /// fast path (no `fill_contiguous` call per span). The pixels are the
+    /// same.
+    pub fn draw_framebuffer<M, D>(
+        &self,
+        mesh: &Mesh,
+        fb: &mut Framebuffer,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<core::convert::Infallible>>
+    where
+        M: ShadingMode,
+        D: DepthTest,
+    {
+        let size = fb.size();
+        self.draw_into::<M, _, D>(mesh, &mut FramebufferSink { fb }, size, depth, cache)
+    }
+
+    fn draw_into<M, P, D>(
+        &self,
+        mesh: &Mesh,
+        sink: &mut P,
+        size: Size,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<P::Error>>
+    where
+        M: ShadingMode,
+        P: PixelSink,
+        D: DepthTest,
+    {
         mesh.validate().map_err(RenderError::Mesh)?;
         let n = mesh.positions.len();
         if cache.len() < n {
             return Err(RenderError::CacheTooSmall);
         }
-        let bb = target.bounding_box();
-        let (w, h) = (bb.size.width, bb.size.height);
+        let (w, h) = (size.width, size.height);
         if w > MAX_TARGET_SIDE || h > MAX_TARGET_SIDE {
             return Err(RenderError::TargetTooLarge);
         }
@@ -294,7 +338,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             proj,
             w: w as i64,
             h: h as i64,
-            origin: bb.top_left,
             clip,
         };
         for tri in mesh.indices {
@@ -302,7 +345,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             for &i in &idx {
                 frame.project(&mut cache[i], i);
             }
-            frame.triangle::<M, T, D>(idx, cache, target, depth, &mut stats)?;
+            frame.triangle::<M, P, D>(idx, cache, sink, depth, &mut stats)?;
         }
         Ok(stats)
     }
@@ -315,7 +358,6 @@ struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     proj: ProjectionCoeffs,
     w: i64,
     h: i64,
-    origin: Point,
     clip: ClipRect,
 }
 
@@ -373,35 +415,6 @@ fn centroid(e: [Vec3; 3]) -> Vec3 {
     Vec3::from_bits(c[0], c[1], c[2])
 }
 
-/// 4 × 4 Bayer thresholds, `(m + ½)/16` in `Q.16`.
-const BAYER: [[u32; 4]; 4] = {
-    const M: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
-    let mut out = [[0u32; 4]; 4];
-    let mut y = 0;
-    while y < 4 {
-        let mut x = 0;
-        while x < 4 {
-            out[y][x] = (2 * M[y][x] + 1) << 11;
-            x += 1;
-        }
-        y += 1;
-    }
-    out
-};
-
-/// A shade quantised to RGB565, with ordered dithering at `(x, y)` if
-/// `dither`: `⌊v · 31 + t⌋` with the Bayer threshold `t` instead of ½.
-#[inline]
-fn quantise(c: Shade, dither: bool, x: i32, y: i32) -> Rgb565 {
-    if !dither {
-        return c.to_rgb565();
-    }
-    let t = BAYER[(y & 3) as usize][(x & 3) as usize];
-    let b = c.to_bits();
-    let q = |v: u32, m: u32| ((v * m + t) >> 16).min(m);
-    Rgb565::new(q(b[0], 31) as u8, q(b[1], 63) as u8, q(b[2], 31) as u8)
-}
-
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Transforms and projects vertex `i` unless already done this frame.
     #[inline]
@@ -450,8 +463,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let y = floor_div(-2 * c[1] * hh + w, 2 * w) + hh;
         let z = floor_div(2 * c[2] * (1 << 23) + w, 2 * w) + (1 << 23);
         [
-            (x + 16 * self.origin.x as i64).clamp(-COORD_LIMIT, COORD_LIMIT),
-            (y + 16 * self.origin.y as i64).clamp(-COORD_LIMIT, COORD_LIMIT),
+            x.clamp(-COORD_LIMIT, COORD_LIMIT),
+            y.clamp(-COORD_LIMIT, COORD_LIMIT),
             z.clamp(-(1 << 30), 1 << 30),
         ]
     }
@@ -476,14 +489,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
     }
 
-    fn triangle<M: ShadingMode, T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+    fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest>(
         &self,
         idx: [usize; 3],
         cache: &mut [CachedVertex],
-        target: &mut T,
+        sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-    ) -> Result<(), RenderError<T::Error>> {
+    ) -> Result<(), RenderError<P::Error>> {
         let d = idx.map(|i| cache[i].clip[2] + cache[i].clip[3]);
         let inside = d.map(|d| d >= 0);
         if !inside.iter().any(|&i| i) {
@@ -553,7 +566,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 stats.lit += 1;
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
                 self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_flat(t, colour, target, depth, st)
+                    self.spans_flat(t, colour, sink, depth, st)
                 })
             }
             ShadingKind::Gouraud => {
@@ -570,7 +583,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     ]
                 });
                 self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_gouraud(t, target, depth, st)
+                    self.spans_gouraud(t, sink, depth, st)
                 })
             }
             ShadingKind::Phong => {
@@ -590,24 +603,36 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     ]
                 });
                 self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_phong(t, target, depth, st)
+                    self.spans_phong(t, sink, depth, st)
                 })
             }
         }
     }
 
-    /// Whether the polygon's bounding box meets the target (a cheap test
-    /// before lighting its vertices).
+    /// Whether the polygon's bounding box holds a pixel centre inside the
+    /// target: the cheap test that spares tiny and off-screen triangles
+    /// their lighting and set-up. Sample `16x + 8` lies in `[min, max]` for
+    /// `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
+    #[inline]
     fn touches(&self, win: &[[i64; 3]]) -> bool {
-        let minx = win.iter().map(|v| v[0]).min().unwrap_or(0);
-        let maxx = win.iter().map(|v| v[0]).max().unwrap_or(0);
-        let miny = win.iter().map(|v| v[1]).min().unwrap_or(0);
-        let maxy = win.iter().map(|v| v[1]).max().unwrap_or(0);
+        let (mut minx, mut maxx, mut miny, mut maxy) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+        for v in win {
+            minx = minx.min(v[0]);
+            maxx = maxx.max(v[0]);
+            miny = miny.min(v[1]);
+            maxy = maxy.max(v[1]);
+        }
         let c = self.clip;
-        maxx >= 16 * c.x0 as i64
-            && minx < 16 * (c.x1 as i64 + 1)
-            && maxy >= 16 * c.y0 as i64
-            && miny < 16 * (c.y1 as i64 + 1)
+        // ⌈(m − 8)/16⌉ = (m + 7) >> 4, ⌊(m − 8)/16⌋ = (m − 8) >> 4 (arithmetic).
+        let (x_lo, x_hi) = (
+            ((minx + 7) >> 4).max(c.x0 as i64),
+            ((maxx - 8) >> 4).min(c.x1 as i64),
+        );
+        let (y_lo, y_hi) = (
+            ((miny + 7) >> 4).max(c.y0 as i64),
+            ((maxy - 8) >> 4).min(c.y1 as i64),
+        );
+        x_lo <= x_hi && y_lo <= y_hi
     }
 
     /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`.
@@ -629,160 +654,108 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         Ok(())
     }
 
-    /// Runs the depth test over a span (if there is one), then sends each
-    /// run of passing pixels with one `fill_contiguous`, colours from
-    /// `colour(offset, x)`.
-    #[inline]
-    fn emit<const N: usize, T: DrawTarget<Color = Rgb565>, D: DepthTest>(
-        &self,
-        s: &Span<N>,
-        target: &mut T,
-        depth: &mut D,
-        stats: &mut DrawStats,
-        mut colour: impl FnMut(i64, i32) -> Rgb565,
-    ) -> Result<(), RenderError<T::Error>> {
-        let len = (s.x1 - s.x0 + 1) as u32;
-        let mut send = |x0: i32, n: u32, target: &mut T, stats: &mut DrawStats| {
-            let off = (x0 - s.x0) as i64;
-            let area = Rectangle::new(Point::new(x0, s.y) + self.origin, Size::new(n, 1));
-            stats.pixels += n;
-            target
-                .fill_contiguous(&area, (0..n as i64).map(|k| colour(off + k, x0 + k as i32)))
-                .map_err(RenderError::Target)
-        };
-        if !D::ENABLED {
-            return send(s.x0, len, target, stats);
-        }
-        let row = depth.row(s.y as u32, s.x0 as u32, len);
-        let mut z = s.start[0];
-        let dz = s.step[0];
-        let mut run_start: Option<i32> = None;
-        let mut runs: [(i32, u32); 8] = [(0, 0); 8];
-        let mut nruns = 0;
-        for (k, stored) in row.iter_mut().enumerate() {
-            // z is Q.24 of z_w; the stored depth is Q.16, cleared to 65535.
-            let z16 = (z >> 8).clamp(0, 65535) as u16;
-            let x = s.x0 + k as i32;
-            if z16 < *stored {
-                *stored = z16;
-                run_start.get_or_insert(x);
-            } else if let Some(x0) = run_start.take() {
-                runs[nruns] = (x0, (x - x0) as u32);
-                nruns += 1;
-                if nruns == runs.len() {
-                    for &(x0, n) in &runs {
-                        send(x0, n, target, stats)?;
-                    }
-                    nruns = 0;
-                }
-            }
-            z += dz;
-        }
-        if let Some(x0) = run_start {
-            runs[nruns] = (x0, (s.x1 + 1 - x0) as u32);
-            nruns += 1;
-        }
-        for &(x0, n) in &runs[..nruns] {
-            send(x0, n, target, stats)?;
-        }
-        Ok(())
-    }
-
-    fn spans_flat<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+    fn spans_flat<P: PixelSink, D: DepthTest>(
         &self,
         t: &Triangle<1>,
         colour: Shade,
-        target: &mut T,
+        sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-    ) -> Result<(), RenderError<T::Error>> {
+    ) -> Result<(), RenderError<P::Error>> {
+        let plain = RawU16::from(colour.to_rgb565()).into_inner();
         let dither = self.r.options.dither;
-        let plain = colour.to_rgb565();
         let mut res = Ok(());
         t.for_each_span(|s| {
             if res.is_ok() {
-                let y = s.y;
-                res = self.emit(s, target, depth, stats, |_, x| {
-                    if dither {
-                        quantise(colour, true, x, y)
-                    } else {
-                        plain
-                    }
-                });
+                let sh = FlatShader {
+                    plain,
+                    shade: colour,
+                    dither,
+                    x: s.x0,
+                    y: s.y,
+                };
+                res = self.send(s, sink, depth, stats, sh);
             }
         });
         res
     }
 
-    fn spans_gouraud<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+    fn spans_gouraud<P: PixelSink, D: DepthTest>(
         &self,
         t: &Triangle<4>,
-        target: &mut T,
+        sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-    ) -> Result<(), RenderError<T::Error>> {
+    ) -> Result<(), RenderError<P::Error>> {
         let dither = self.r.options.dither;
         let mut res = Ok(());
         t.for_each_span(|s| {
             if res.is_ok() {
-                let y = s.y;
-                res = self.emit(s, target, depth, stats, |k, x| {
-                    // Inside the triangle each value lies between its
-                    // vertex values (in [2^15, 31.5·2^16]) to within the
-                    // stepping error (below 2^12): the shift gives 0..=31
-                    // (0..=63); the clamp guards slivers.
-                    let r = s.start[1] + s.step[1] * k;
-                    let g = s.start[2] + s.step[2] * k;
-                    let b = s.start[3] + s.step[3] * k;
-                    if dither {
-                        let th = BAYER[(y & 3) as usize][(x & 3) as usize] as i64 - (1 << 15);
-                        let q = |v: i64, m: i64| ((v + th) >> 16).clamp(0, m) as u32;
-                        Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(pack565(
-                            q(r, 31),
-                            q(g, 63),
-                            q(b, 31),
-                        )))
-                    } else {
-                        let q = |v: i64, m: i64| (v >> 16).clamp(0, m) as u32;
-                        Rgb565::from(embedded_graphics::pixelcolor::raw::RawU16::new(pack565(
-                            q(r, 31),
-                            q(g, 63),
-                            q(b, 31),
-                        )))
+                let c = [s.start[1], s.start[2], s.start[3]];
+                let d = [s.step[1], s.step[2], s.step[3]];
+                let n = (s.x1 - s.x0 + 1) as u32;
+                res = match (dither, PackedGouraud::new(c, d, n)) {
+                    (false, Some(sh)) => self.send(s, sink, depth, stats, sh),
+                    _ => {
+                        let sh = ClampedGouraud {
+                            c,
+                            d,
+                            dither,
+                            x: s.x0,
+                            y: s.y,
+                        };
+                        self.send(s, sink, depth, stats, sh)
                     }
-                });
+                };
             }
         });
         res
     }
 
-    fn spans_phong<T: DrawTarget<Color = Rgb565>, D: DepthTest>(
+    fn spans_phong<P: PixelSink, D: DepthTest>(
         &self,
         t: &Triangle<7>,
-        target: &mut T,
+        sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-    ) -> Result<(), RenderError<T::Error>> {
+    ) -> Result<(), RenderError<P::Error>> {
         let dither = self.r.options.dither;
         let mut res = Ok(());
         t.for_each_span(|s| {
             if res.is_ok() {
-                let y = s.y;
-                res = self.emit(s, target, depth, stats, |k, x| {
-                    let at = |j: usize| s.start[j] + s.step[j] * k;
-                    // Interpolated normal (Q.26, below 2^27 in magnitude),
-                    // renormalised; eye position saturated to I8F24.
-                    let n = [at(1), at(2), at(3)]
-                        .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32);
-                    let n = normalize(n).unwrap_or(Unit3::ZERO);
-                    let p = [at(4), at(5), at(6)]
-                        .map(|v| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32);
-                    let c = self.r.lighting.shade(Vec3::from_bits(p[0], p[1], p[2]), n);
-                    quantise(c, dither, x, y)
-                });
+                let mut cur = [0i64; 6];
+                let mut d = [0i64; 6];
+                cur.copy_from_slice(&s.start[1..]);
+                d.copy_from_slice(&s.step[1..]);
+                let sh = PhongPixels {
+                    lighting: &self.r.lighting,
+                    cur,
+                    d,
+                    dither,
+                    x: s.x0,
+                    y: s.y,
+                };
+                res = self.send(s, sink, depth, stats, sh);
             }
         });
         res
+    }
+
+    /// One span through the depth test into the sink.
+    #[inline]
+    fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
+        &self,
+        s: &Span<N>,
+        sink: &mut P,
+        depth: &mut D,
+        stats: &mut DrawStats,
+        sh: Sh,
+    ) -> Result<(), RenderError<P::Error>> {
+        let n = (s.x1 - s.x0 + 1) as u32;
+        let w = emit(sink, depth, s.y, s.x0, n, s.start[0], s.step[0], sh)
+            .map_err(RenderError::Target)?;
+        stats.pixels += w;
+        Ok(())
     }
 }
 

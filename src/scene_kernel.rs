@@ -7,7 +7,7 @@
 //! [`KernelScene::render`] renders it into a framebuffer, choosing the
 //! kernel's type parameters (specular model, viewer, shading mode, depth
 //! test) from the description's run-time values. A material whose specular
-//! colour is black is rendered with [`NoSpecular`]: it is the same image.
+//! colour is black is rendered with [`NoSpecular`](crate::material::NoSpecular): it is the same image.
 
 use std::vec;
 use std::vec::Vec;
@@ -20,9 +20,10 @@ use embedded_graphics::Pixel;
 
 use crate::camera::{Camera, CameraError, Projection};
 use crate::color::{Rgb, Shade};
-use crate::depth::{DepthBuffer, NoDepth};
+use crate::depth::{DepthBuffer, DepthTest, NoDepth};
 use crate::framebuffer::Framebuffer;
 use crate::illumination::{InfiniteViewer, LocalViewer, Viewer};
+use crate::light::LightSet;
 use crate::light::{
     unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight,
     SpotCone, SpotLight, WidePoint,
@@ -31,6 +32,7 @@ use crate::material::{BlinnPhong, Material, Phong, Specular};
 use crate::mesh::{vertex_normals, Mesh, MeshError};
 use crate::render::{
     CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer,
+    ShadingMode,
 };
 use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
 use crate::specular_table::Exponent;
@@ -193,50 +195,79 @@ impl KernelScene {
         cache: &mut [CachedVertex],
     ) -> Result<DrawStats, RenderError<T::Error>> {
         target.clear(self.background).map_err(RenderError::Target)?;
+        let size = target.bounding_box().size;
+        self.dispatch(&mut TargetDrawer(target), size, depth, cache)
+    }
+
+    /// As [`KernelScene::render`], into a [`Framebuffer`] through the
+    /// kernel's framebuffer fast path.
+    pub fn render_framebuffer(
+        &self,
+        fb: &mut Framebuffer,
+        depth: &mut [u16],
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<core::convert::Infallible>> {
+        let _ = fb.clear(self.background);
+        let size = fb.size();
+        self.dispatch(&mut FbDrawer(fb), size, depth, cache)
+    }
+
+    fn dispatch<W: Drawer>(
+        &self,
+        out: &mut W,
+        size: Size,
+        depth: &mut [u16],
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<W::Error>> {
         let blinn = self.desc.specular_model == SpecularModel::Blinn;
-        if self.specular.is_black() {
-            self.with_viewer(Material::new(), target, depth, cache)
+        let c = (self.specular, self.shininess);
+        if c.0.is_black() {
+            self.with_viewer(Material::new(), out, size, depth, cache)
         } else if blinn {
             let s = BlinnPhong {
-                color: self.specular,
-                shininess: self.shininess,
+                color: c.0,
+                shininess: c.1,
             };
-            self.with_viewer(Material::new().with_specular(s), target, depth, cache)
+            self.with_viewer(Material::new().with_specular(s), out, size, depth, cache)
         } else {
             let s = Phong {
-                color: self.specular,
-                shininess: self.shininess,
+                color: c.0,
+                shininess: c.1,
             };
-            self.with_viewer(Material::new().with_specular(s), target, depth, cache)
+            self.with_viewer(Material::new().with_specular(s), out, size, depth, cache)
         }
     }
 
-    fn with_viewer<S: Specular, T: DrawTarget<Color = Rgb565>>(
+    fn with_viewer<S: Specular, W: Drawer>(
         &self,
         m: Material<S>,
-        target: &mut T,
+        out: &mut W,
+        size: Size,
         depth: &mut [u16],
         cache: &mut [CachedVertex],
-    ) -> Result<DrawStats, RenderError<T::Error>> {
+    ) -> Result<DrawStats, RenderError<W::Error>> {
         let m = m
             .with_emission(self.emission)
             .with_ambient(self.ambient)
             .with_diffuse(self.diffuse);
         match self.desc.viewer {
             scene_desc::Viewer::Infinite => {
-                self.draw::<S, InfiniteViewer, T>(&m, target, depth, cache)
+                self.draw::<S, InfiniteViewer, W>(&m, out, size, depth, cache)
             }
-            scene_desc::Viewer::Local => self.draw::<S, LocalViewer, T>(&m, target, depth, cache),
+            scene_desc::Viewer::Local => {
+                self.draw::<S, LocalViewer, W>(&m, out, size, depth, cache)
+            }
         }
     }
 
-    fn draw<S: Specular, V: Viewer, T: DrawTarget<Color = Rgb565>>(
+    fn draw<S: Specular, V: Viewer, W: Drawer>(
         &self,
         m: &Material<S>,
-        target: &mut T,
+        out: &mut W,
+        size: Size,
         depth: &mut [u16],
         cache: &mut [CachedVertex],
-    ) -> Result<DrawStats, RenderError<T::Error>> {
+    ) -> Result<DrawStats, RenderError<W::Error>> {
         let options = RenderOptions {
             cull: self.desc.cull,
             two_sided: self.desc.two_sided,
@@ -251,22 +282,21 @@ impl KernelScene {
             options,
         );
         let mesh = self.mesh();
-        let size = target.bounding_box().size;
         use scene_desc::Shading as Sh;
         if self.desc.depth {
             let mut db = DepthBuffer::new(depth, size.width, size.height)
                 .map_err(|_| RenderError::DepthTooSmall)?;
             db.clear();
             match self.desc.shading {
-                Sh::Flat => r.draw::<Flat, _, _>(&mesh, target, &mut db, cache),
-                Sh::Gouraud => r.draw::<Gouraud, _, _>(&mesh, target, &mut db, cache),
-                Sh::Phong => r.draw::<PhongShading, _, _>(&mesh, target, &mut db, cache),
+                Sh::Flat => out.draw::<Flat, _, _, _, _>(&r, &mesh, &mut db, cache),
+                Sh::Gouraud => out.draw::<Gouraud, _, _, _, _>(&r, &mesh, &mut db, cache),
+                Sh::Phong => out.draw::<PhongShading, _, _, _, _>(&r, &mesh, &mut db, cache),
             }
         } else {
             match self.desc.shading {
-                Sh::Flat => r.draw::<Flat, _, _>(&mesh, target, &mut NoDepth, cache),
-                Sh::Gouraud => r.draw::<Gouraud, _, _>(&mesh, target, &mut NoDepth, cache),
-                Sh::Phong => r.draw::<PhongShading, _, _>(&mesh, target, &mut NoDepth, cache),
+                Sh::Flat => out.draw::<Flat, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
+                Sh::Gouraud => out.draw::<Gouraud, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
+                Sh::Phong => out.draw::<PhongShading, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
             }
         }
     }
@@ -428,5 +458,47 @@ impl DrawTarget for CoverageTarget<'_, '_> {
 
     fn clear(&mut self, color: Rgb565) -> Result<(), Self::Error> {
         self.inner.clear(color)
+    }
+}
+
+/// Where [`KernelScene`] draws: a `DrawTarget` or a framebuffer.
+trait Drawer {
+    type Error;
+    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>>;
+}
+
+struct TargetDrawer<'t, T>(&'t mut T);
+
+impl<T: DrawTarget<Color = Rgb565>> Drawer for TargetDrawer<'_, T> {
+    type Error = T::Error;
+    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        r.draw::<M, T, D>(mesh, self.0, depth, cache)
+    }
+}
+
+struct FbDrawer<'t, 'a>(&'t mut Framebuffer<'a>);
+
+impl Drawer for FbDrawer<'_, '_> {
+    type Error = core::convert::Infallible;
+    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>> {
+        r.draw_framebuffer::<M, D>(mesh, self.0, depth, cache)
     }
 }

@@ -109,3 +109,34 @@ fn quad_fill_s2_and_fine_sphere_s3() {
     let (e, _) = kernel_vs_reference(&s3(320, 240));
     assert_within_bound("S3 sphere 192x96", &e);
 }
+
+/// The framebuffer fast path writes the same pixels as the generic
+/// `DrawTarget` path (one `fill_contiguous` per run), in every mode.
+#[test]
+fn framebuffer_fast_path_matches_draw_target_path() {
+    use fixshade::framebuffer::Framebuffer;
+    use fixshade::render::CachedVertex;
+    use fixshade::scene_kernel::KernelScene;
+    for (name, mut d) in fixshade::standard_scenes::all() {
+        for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+            for dither in [false, true] {
+                d.shading = shading;
+                d.dither = dither;
+                let k = KernelScene::new(&d).unwrap();
+                let slow = k.render_frame().unwrap();
+                let mut px = vec![0u16; slow.pixels.len()];
+                let mut depth = vec![0u16; slow.pixels.len()];
+                let mut cache = vec![CachedVertex::default(); d.mesh.positions.len()];
+                let mut fb = Framebuffer::new(&mut px, d.width, d.height).unwrap();
+                let stats = k
+                    .render_framebuffer(&mut fb, &mut depth, &mut cache)
+                    .unwrap();
+                assert_eq!(stats, slow.stats, "{name} {shading:?} dither {dither}");
+                assert!(
+                    px == slow.pixels,
+                    "{name} {shading:?} dither {dither}: pixels differ"
+                );
+            }
+        }
+    }
+}

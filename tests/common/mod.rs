@@ -3,9 +3,7 @@
 
 use fixshade::error_measure::{compare, ErrorStats};
 use fixshade::reference;
-use fixshade::scene_desc::{
-    CameraDesc, LightDesc, MaterialDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
-};
+use fixshade::scene_desc::SceneDesc;
 use fixshade::scene_kernel::{KernelFrame, KernelScene};
 
 /// Renders `scene` with the kernel and the reference and compares them.

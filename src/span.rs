@@ -1,0 +1,419 @@
+//! Span shading and output: where a span's pixels go ([`PixelSink`]) and
+//! how their colours are made ([`SpanShader`]), with the depth test between.
+//!
+//! Two sinks: any `DrawTarget` (one `fill_contiguous` per span, or per run
+//! of pixels that pass the depth test), and a [`Framebuffer`] written in
+//! place (the fast path: no per-span call, no bounds arithmetic).
+//!
+//! # The Gouraud span loop
+//! The three channels are stepped together in one `u64`: red in bits 43–63,
+//! green in bits 21–42, blue in bits 0–20, each with 16 fractional bits
+//! below its 5- or 6-bit RGB565 value and a bias of ½ (so truncation is the
+//! rounding of SPEC.md 6). One wrapping add steps all three: the packed
+//! value is `Σ vᵢ·2^offᵢ` with every `vᵢ` inside its field at every pixel of
+//! the span (checked at the span's two ends; values are linear in between),
+//! so modular addition of the packed step gives exactly the packed values.
+//! The RGB565 pixel is then `((acc & MASK) · K) >> 48`: the mask keeps the
+//! three integer parts, and `K = 1 + 2¹⁶ + 2³²` moves green and blue next to
+//! red in bits 48–63 without carries (the six shifted fields are disjoint).
+//! Per pixel: add, and, multiply, shift, store.
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::{Point, Size};
+use embedded_graphics::primitives::Rectangle;
+
+use embedded_graphics::prelude::RawData;
+
+use crate::color::{pack565, Shade};
+use crate::depth::DepthTest;
+use crate::framebuffer::Framebuffer;
+use crate::illumination::{Lighting, Viewer};
+use crate::light::LightSet;
+use crate::material::Specular;
+use crate::normalize::normalize;
+use crate::vector::{Unit3, Vec3};
+
+/// Where a span's pixels go.
+pub trait PixelSink {
+    /// The sink's error.
+    type Error;
+    /// The raw pixels of row `y` from column `x0`, `n` of them, where the
+    /// sink is memory the renderer may write directly.
+    fn row(&mut self, y: i32, x0: i32, n: usize) -> Option<&mut [u16]>;
+    /// Sends `n` pixels of row `y` from column `x0`.
+    fn fill(
+        &mut self,
+        y: i32,
+        x0: i32,
+        n: u32,
+        colors: impl Iterator<Item = u16>,
+    ) -> Result<(), Self::Error>;
+}
+
+/// Any `DrawTarget`: one `fill_contiguous` per run, at the target's origin
+/// offset.
+pub struct TargetSink<'t, T> {
+    /// The target.
+    pub target: &'t mut T,
+    /// The target's bounding box's top-left corner.
+    pub origin: Point,
+}
+
+impl<T: DrawTarget<Color = Rgb565>> PixelSink for TargetSink<'_, T> {
+    type Error = T::Error;
+    #[inline(always)]
+    fn row(&mut self, _: i32, _: i32, _: usize) -> Option<&mut [u16]> {
+        None
+    }
+    #[inline]
+    fn fill(
+        &mut self,
+        y: i32,
+        x0: i32,
+        n: u32,
+        colors: impl Iterator<Item = u16>,
+    ) -> Result<(), T::Error> {
+        let area = Rectangle::new(Point::new(x0, y) + self.origin, Size::new(n, 1));
+        self.target
+            .fill_contiguous(&area, colors.map(|c| Rgb565::from(RawU16::new(c))))
+    }
+}
+
+/// A [`Framebuffer`], written in place.
+pub struct FramebufferSink<'t, 'a> {
+    /// The framebuffer.
+    pub fb: &'t mut Framebuffer<'a>,
+}
+
+impl PixelSink for FramebufferSink<'_, '_> {
+    type Error = core::convert::Infallible;
+    #[inline(always)]
+    fn row(&mut self, y: i32, x0: i32, n: usize) -> Option<&mut [u16]> {
+        // The rasterizer clips spans to the framebuffer's size.
+        self.fb.row_mut(y as u32, x0 as u32, n)
+    }
+    fn fill(
+        &mut self,
+        y: i32,
+        x0: i32,
+        n: u32,
+        colors: impl Iterator<Item = u16>,
+    ) -> Result<(), Self::Error> {
+        if let Some(row) = self.fb.row_mut(y as u32, x0 as u32, n as usize) {
+            for (p, c) in row.iter_mut().zip(colors) {
+                *p = c;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Makes the colours of a span's pixels, left to right.
+pub trait SpanShader {
+    /// The colour of the current pixel (raw RGB565); moves to the next.
+    fn next(&mut self) -> u16;
+    /// Moves `n` pixels on without making colours.
+    fn skip(&mut self, n: u32);
+    /// Fills a whole row of pixels (no depth test).
+    #[inline(always)]
+    fn fill_row(&mut self, row: &mut [u16]) {
+        for p in row.iter_mut() {
+            *p = self.next();
+        }
+    }
+}
+
+/// One colour for the whole span, or a dithered one.
+pub struct FlatShader {
+    /// The undithered colour.
+    pub plain: u16,
+    /// The shade, for dithering.
+    pub shade: Shade,
+    /// Dithering on.
+    pub dither: bool,
+    /// Current column and row (for the dither pattern).
+    pub x: i32,
+    /// Row.
+    pub y: i32,
+}
+
+impl SpanShader for FlatShader {
+    #[inline(always)]
+    fn next(&mut self) -> u16 {
+        let c = if self.dither {
+            dither_shade(self.shade, self.x, self.y)
+        } else {
+            self.plain
+        };
+        self.x += 1;
+        c
+    }
+    #[inline(always)]
+    fn skip(&mut self, n: u32) {
+        self.x += n as i32;
+    }
+}
+
+/// 4 × 4 Bayer thresholds, `(m + ½)/16` in `Q.16`.
+pub const BAYER: [[u32; 4]; 4] = {
+    const M: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+    let mut out = [[0u32; 4]; 4];
+    let mut y = 0;
+    while y < 4 {
+        let mut x = 0;
+        while x < 4 {
+            out[y][x] = (2 * M[y][x] + 1) << 11;
+            x += 1;
+        }
+        y += 1;
+    }
+    out
+};
+
+/// A shade quantised with ordered dithering at `(x, y)`: `⌊v·31 + t⌋` with
+/// the Bayer threshold `t` in place of ½ (SPEC.md 6).
+#[inline]
+pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
+    let t = BAYER[(y & 3) as usize][(x & 3) as usize];
+    let b = c.to_bits();
+    // v ≤ 2^16, v·63 + t < 2^23: no overflow.
+    let q = |v: u32, m: u32| ((v * m + t) >> 16).min(m);
+    pack565(q(b[0], 31), q(b[1], 63), q(b[2], 31))
+}
+
+const PACK_MASK: u64 = (31 << 59) | (63 << 37) | (31 << 16);
+const PACK_K: u64 = 1 + (1 << 16) + (1 << 32);
+
+/// Gouraud colours stepped in one packed `u64` (see the module docs).
+pub struct PackedGouraud {
+    acc: u64,
+    step: u64,
+}
+
+impl PackedGouraud {
+    /// The shader for a span of `n` pixels whose scaled channels (`Q.16`
+    /// of the 5/6-bit values, biased by ½) start at `c` and step by `d`, or
+    /// `None` if a channel leaves its field somewhere on the span (then the
+    /// clamped shader must be used).
+    #[inline]
+    pub fn new(c: [i64; 3], d: [i64; 3], n: u32) -> Option<PackedGouraud> {
+        let last = n.saturating_sub(1) as i64;
+        let lim = [32i64 << 16, 64 << 16, 32 << 16];
+        for k in 0..3 {
+            // |d| ≤ 2^40 (the rasterizer's steep limit) and n ≤ 2^20.
+            let end = c[k] + d[k] * last;
+            if c[k] < 0 || c[k] >= lim[k] || end < 0 || end >= lim[k] {
+                return None;
+            }
+        }
+        let pack = |v: [i64; 3]| {
+            (v[0] as u64)
+                .wrapping_shl(43)
+                .wrapping_add((v[1] as u64).wrapping_shl(21))
+                .wrapping_add(v[2] as u64)
+        };
+        Some(PackedGouraud {
+            acc: pack(c),
+            step: pack(d),
+        })
+    }
+}
+
+impl SpanShader for PackedGouraud {
+    #[inline(always)]
+    fn next(&mut self) -> u16 {
+        let p = ((self.acc & PACK_MASK).wrapping_mul(PACK_K) >> 48) as u16;
+        self.acc = self.acc.wrapping_add(self.step);
+        p
+    }
+    #[inline(always)]
+    fn skip(&mut self, n: u32) {
+        self.acc = self.acc.wrapping_add(self.step.wrapping_mul(n as u64));
+    }
+    /// Four pixels per iteration (independent multiplies, less loop
+    /// overhead).
+    #[inline(always)]
+    fn fill_row(&mut self, row: &mut [u16]) {
+        let (s, s2, s3, s4) = (
+            self.step,
+            self.step.wrapping_mul(2),
+            self.step.wrapping_mul(3),
+            self.step.wrapping_mul(4),
+        );
+        let px = |a: u64| ((a & PACK_MASK).wrapping_mul(PACK_K) >> 48) as u16;
+        let mut chunks = row.chunks_exact_mut(4);
+        for c in &mut chunks {
+            let a = self.acc;
+            c[0] = px(a);
+            c[1] = px(a.wrapping_add(s));
+            c[2] = px(a.wrapping_add(s2));
+            c[3] = px(a.wrapping_add(s3));
+            self.acc = a.wrapping_add(s4);
+        }
+        for p in chunks.into_remainder() {
+            *p = self.next();
+        }
+    }
+}
+
+/// Gouraud colours per channel with a clamp (slivers whose values leave
+/// the fields by rounding) and optional dithering.
+pub struct ClampedGouraud {
+    /// Current scaled channels.
+    pub c: [i64; 3],
+    /// Step per pixel.
+    pub d: [i64; 3],
+    /// Dithering on.
+    pub dither: bool,
+    /// Column.
+    pub x: i32,
+    /// Row.
+    pub y: i32,
+}
+
+impl SpanShader for ClampedGouraud {
+    #[inline]
+    fn next(&mut self) -> u16 {
+        // The channels carry the bias ½; dithering swaps it for the Bayer
+        // threshold.
+        let t = if self.dither {
+            BAYER[(self.y & 3) as usize][(self.x & 3) as usize] as i64 - (1 << 15)
+        } else {
+            0
+        };
+        let q = |v: i64, m: i64| ((v + t) >> 16).clamp(0, m) as u32;
+        let p = pack565(q(self.c[0], 31), q(self.c[1], 63), q(self.c[2], 31));
+        self.skip(1);
+        p
+    }
+    #[inline]
+    fn skip(&mut self, n: u32) {
+        for (c, d) in self.c.iter_mut().zip(&self.d) {
+            *c += d * n as i64;
+        }
+        self.x += n as i32;
+    }
+}
+
+/// Sends a span: runs the depth test (if any) and writes the pixels that
+/// pass with colours from `sh`. `z`, `dz`: depth at the first pixel and its
+/// step, `Q.24` of `z_w`. Returns the number of pixels written.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
+    sink: &mut P,
+    depth: &mut D,
+    y: i32,
+    x0: i32,
+    n: u32,
+    z: i64,
+    dz: i64,
+    mut sh: S,
+) -> Result<u32, P::Error> {
+    if !D::ENABLED {
+        if let Some(row) = sink.row(y, x0, n as usize) {
+            sh.fill_row(row);
+            return Ok(n);
+        }
+        sink.fill(y, x0, n, (0..n).map(|_| sh.next()))?;
+        return Ok(n);
+    }
+    let drow = depth.row(y as u32, x0 as u32, n);
+    let mut z = z;
+    let mut written = 0;
+    if let Some(row) = sink.row(y, x0, n as usize) {
+        for (p, stored) in row.iter_mut().zip(drow.iter_mut()) {
+            let z16 = (z >> 8).clamp(0, 65535) as u16;
+            if z16 < *stored {
+                *stored = z16;
+                *p = sh.next();
+                written += 1;
+            } else {
+                sh.skip(1);
+            }
+            z += dz;
+        }
+        return Ok(written);
+    }
+    // A display: one fill_contiguous per run of passing pixels. The depth
+    // test of a run is done before its pixels are sent.
+    let mut k = 0u32;
+    let n = n.min(drow.len() as u32);
+    let mut shaded = 0u32;
+    while k < n {
+        // Skip failing pixels.
+        while k < n {
+            let z16 = (z >> 8).clamp(0, 65535) as u16;
+            if z16 < drow[k as usize] {
+                break;
+            }
+            z += dz;
+            k += 1;
+        }
+        let start = k;
+        while k < n {
+            let z16 = (z >> 8).clamp(0, 65535) as u16;
+            let stored = &mut drow[k as usize];
+            if z16 >= *stored {
+                break;
+            }
+            *stored = z16;
+            z += dz;
+            k += 1;
+        }
+        if k > start {
+            sh.skip(start - shaded);
+            let len = k - start;
+            sink.fill(y, x0 + start as i32, len, (0..len).map(|_| sh.next()))?;
+            shaded = k;
+            written += len;
+        }
+    }
+    Ok(written)
+}
+
+/// Phong shading per pixel: normal and eye position stepped, the normal
+/// renormalised, the equation evaluated.
+pub struct PhongPixels<'l, S: Specular, V: Viewer, L: LightSet> {
+    /// The frame's lighting.
+    pub lighting: &'l Lighting<S, V, L>,
+    /// Normal (`Q.26`) and eye position (`I8F24` raw) at the current pixel.
+    pub cur: [i64; 6],
+    /// Their steps.
+    pub d: [i64; 6],
+    /// Dithering on.
+    pub dither: bool,
+    /// Column.
+    pub x: i32,
+    /// Row.
+    pub y: i32,
+}
+
+impl<S: Specular, V: Viewer, L: LightSet> SpanShader for PhongPixels<'_, S, V, L> {
+    #[inline]
+    fn next(&mut self) -> u16 {
+        // The interpolated normal lies between unit vectors (below 2^27 in
+        // Q.26); positions between I8F24 points: both fit i32.
+        let sat = |v: i64| v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        let c = &self.cur;
+        let n = normalize([sat(c[0]), sat(c[1]), sat(c[2])]).unwrap_or(Unit3::ZERO);
+        let p = Vec3::from_bits(sat(c[3]), sat(c[4]), sat(c[5]));
+        let shade = self.lighting.shade(p, n);
+        let px = if self.dither {
+            dither_shade(shade, self.x, self.y)
+        } else {
+            RawU16::from(shade.to_rgb565()).into_inner()
+        };
+        self.skip(1);
+        px
+    }
+    #[inline]
+    fn skip(&mut self, n: u32) {
+        for (c, d) in self.cur.iter_mut().zip(&self.d) {
+            *c += d * n as i64;
+        }
+        self.x += n as i32;
+    }
+}
