@@ -1,0 +1,830 @@
+//! Issue 3: watertight rasterization. A counting `DrawTarget` records how
+//! many times each pixel is written (through `draw_iter` and
+//! `fill_contiguous` alike) and every write outside its bounding box.
+//!
+//! * closed meshes (sphere, cube, torus) with culling and no depth test, at
+//!   awkward sub-pixel camera offsets: every pixel inside the silhouette
+//!   written exactly once, none twice, no hole, coverage as the f64
+//!   reference's up to the silhouette's own pixels;
+//! * fans of N triangles around a shared vertex at a sub-pixel position:
+//!   written exactly as an independent integer coverage oracle (SPEC.md 5:
+//!   1/16-pixel snapping, samples at pixel centres, top-left rule) says,
+//!   i.e. the fan's polygon exactly once;
+//! * two triangles sharing a long edge at random positions (proptest);
+//! * nothing sent outside the target: triangles partly off-screen, huge
+//!   triangles around the screen, the camera inside a box, offset and
+//!   degenerate (1 × 1, 0 × 0) targets.
+//!
+//! The oracle: an orthographic camera whose view volume is as many units
+//! as the target has pixels (or a power of two more) maps eye-space
+//! positions on a 1/256 grid to window positions that the kernel's
+//! fixed-point projection computes exactly, so the snapped vertices (and so
+//! the exact coverage) are known in advance.
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::geometry::{Dimensions, Point, Size};
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::primitives::{PointsIter, Rectangle};
+use embedded_graphics::Pixel;
+use fixshade::camera::{Camera, Projection as CamProjection};
+use fixshade::generate;
+use fixshade::illumination::InfiniteViewer;
+use fixshade::material::NoSpecular;
+use fixshade::mesh::Mesh;
+use fixshade::reference;
+use fixshade::render::{CachedVertex, DrawStats, Flat, NoDepth, RenderOptions, Renderer};
+use fixshade::scene_desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc, Shading};
+use fixshade::scene_kernel::KernelScene;
+use fixshade::{Mat4, Material, Rgb, Vec3};
+use proptest::prelude::*;
+
+// ---------------------------------------------------------------------------
+// The counting target
+// ---------------------------------------------------------------------------
+
+/// Counts writes per pixel; writes outside the bounding box are counted
+/// apart (and never indexed).
+struct CountingTarget {
+    origin: Point,
+    width: u32,
+    height: u32,
+    counts: Vec<u16>,
+    outside: usize,
+    iter_pixels: usize,
+    fill_calls: usize,
+}
+
+impl CountingTarget {
+    fn new(width: u32, height: u32) -> Self {
+        Self::with_origin(Point::zero(), width, height)
+    }
+
+    fn with_origin(origin: Point, width: u32, height: u32) -> Self {
+        CountingTarget {
+            origin,
+            width,
+            height,
+            counts: vec![0; (width * height) as usize],
+            outside: 0,
+            iter_pixels: 0,
+            fill_calls: 0,
+        }
+    }
+
+    fn hit(&mut self, p: Point) {
+        let (x, y) = (p.x - self.origin.x, p.y - self.origin.y);
+        if x < 0 || y < 0 || x >= self.width as i32 || y >= self.height as i32 {
+            self.outside += 1;
+        } else {
+            let i = y as usize * self.width as usize + x as usize;
+            self.counts[i] = self.counts[i].saturating_add(1);
+        }
+    }
+
+    fn count(&self, x: i32, y: i32) -> u16 {
+        if x < 0 || y < 0 || x >= self.width as i32 || y >= self.height as i32 {
+            return 0;
+        }
+        self.counts[y as usize * self.width as usize + x as usize]
+    }
+
+    fn written(&self) -> usize {
+        self.counts.iter().filter(|&&c| c > 0).count()
+    }
+
+    fn doubles(&self) -> Vec<(i32, i32, u16)> {
+        let w = self.width as usize;
+        self.counts
+            .iter()
+            .enumerate()
+            .filter(|(_, &c)| c > 1)
+            .map(|(i, &c)| ((i % w) as i32, (i / w) as i32, c))
+            .collect()
+    }
+}
+
+impl Dimensions for CountingTarget {
+    fn bounding_box(&self) -> Rectangle {
+        Rectangle::new(self.origin, Size::new(self.width, self.height))
+    }
+}
+
+impl DrawTarget for CountingTarget {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, _) in pixels {
+            self.iter_pixels += 1;
+            self.hit(p);
+        }
+        Ok(())
+    }
+
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+        &mut self,
+        area: &Rectangle,
+        colors: I,
+    ) -> Result<(), Self::Error> {
+        self.fill_calls += 1;
+        let mut colors = colors.into_iter();
+        for p in area.points() {
+            // One colour per point, as the trait requires.
+            assert!(colors.next().is_some(), "fill_contiguous: too few colours");
+            self.hit(p);
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, _: Rgb565) -> Result<(), Self::Error> {
+        // Clearing is not drawing: KernelScene::render clears first.
+        Ok(())
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The coverage oracle (SPEC.md 5)
+// ---------------------------------------------------------------------------
+
+/// Eye-space coordinates in 1/256 units.
+type P256 = (i64, i64);
+
+/// A named triangle list.
+type NamedMesh = (&'static str, Vec<P256>, Vec<[u16; 3]>);
+
+fn floor_div(a: i64, b: i64) -> i64 {
+    a.div_euclid(b)
+}
+
+/// A scene in the exact orthographic set-up: a `size × size` target,
+/// `ppu` pixels per eye unit (a power of two).
+#[derive(Clone, Copy, Debug)]
+struct Ortho {
+    size: u32,
+    ppu: i64,
+}
+
+impl Ortho {
+    fn camera(&self) -> Camera {
+        let height = self.size as f32 / self.ppu as f32;
+        Camera::look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0])
+            .and_then(|c| c.with_projection(CamProjection::Orthographic { height }, 1.0, 10.0))
+            .expect("camera")
+    }
+
+    /// Snapped window position in 1/16 pixel: `⌊16·x_w + ½⌋` with
+    /// `x_w = ppu·x + W/2`, `y_w = H/2 − ppu·y`.
+    fn snap(&self, p: P256) -> (i64, i64) {
+        let half = 8 * self.size as i64;
+        (
+            floor_div(16 * self.ppu * p.0 + 128, 256) + half,
+            floor_div(-16 * self.ppu * p.1 + 128, 256) + half,
+        )
+    }
+
+    fn vec3(p: P256) -> Vec3 {
+        Vec3::from_bits((p.0 << 16) as i32, (p.1 << 16) as i32, 0)
+    }
+}
+
+/// Edge function of SPEC.md 5 / the reference, in 1/16 pixel.
+fn edge(a: (i64, i64), b: (i64, i64), p: (i64, i64)) -> i64 {
+    (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0)
+}
+
+/// Adds 1 to every pixel of a `w × h` grid whose centre the snapped
+/// triangle covers (top-left rule).
+fn oracle_triangle(v: [(i64, i64); 3], w: u32, h: u32, counts: &mut [u16]) {
+    let [a, mut b, mut c] = v;
+    let area = edge(a, b, c);
+    if area == 0 {
+        return;
+    }
+    if area < 0 {
+        std::mem::swap(&mut b, &mut c);
+    }
+    let top_left = |p: (i64, i64), q: (i64, i64)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        (dy == 0 && dx > 0) || dy < 0
+    };
+    let edges = [(b, c), (c, a), (a, b)];
+    let tl = edges.map(|(p, q)| top_left(p, q));
+    let xs = [a.0, b.0, c.0];
+    let ys = [a.1, b.1, c.1];
+    let x0 = (floor_div(*xs.iter().min().unwrap() - 8, 16)).max(0);
+    let x1 = (floor_div(*xs.iter().max().unwrap() - 8, 16) + 1).min(w as i64 - 1);
+    let y0 = (floor_div(*ys.iter().min().unwrap() - 8, 16)).max(0);
+    let y1 = (floor_div(*ys.iter().max().unwrap() - 8, 16) + 1).min(h as i64 - 1);
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let s = (16 * x + 8, 16 * y + 8);
+            let inside = edges
+                .iter()
+                .zip(tl)
+                .all(|(&(p, q), t)| match edge(p, q, s) {
+                    e if e > 0 => true,
+                    0 => t,
+                    _ => false,
+                });
+            if inside {
+                counts[(y * w as i64 + x) as usize] += 1;
+            }
+        }
+    }
+}
+
+/// The oracle's counts for a triangle list.
+fn oracle(o: Ortho, positions: &[P256], indices: &[[u16; 3]]) -> Vec<u16> {
+    let mut counts = vec![0u16; (o.size * o.size) as usize];
+    for t in indices {
+        let v = t.map(|i| o.snap(positions[i as usize]));
+        oracle_triangle(v, o.size, o.size, &mut counts);
+    }
+    counts
+}
+
+/// Renders a triangle list flat, no lights, no depth, into `target`.
+fn draw(
+    camera: &Camera,
+    positions: &[Vec3],
+    indices: &[[u16; 3]],
+    cull: bool,
+    target: &mut CountingTarget,
+) -> DrawStats {
+    let material = Material::new();
+    let r = Renderer::<NoSpecular, InfiniteViewer, ()>::new(
+        camera,
+        Mat4::IDENTITY,
+        &material,
+        Rgb::WHITE,
+        &(),
+        RenderOptions {
+            cull,
+            ..RenderOptions::default()
+        },
+    );
+    let mut cache = vec![CachedVertex::default(); positions.len()];
+    r.draw::<Flat, _, _>(
+        &Mesh::new(positions, indices),
+        target,
+        &mut NoDepth,
+        &mut cache,
+    )
+    .expect("draw")
+}
+
+/// Renders in the exact orthographic set-up and compares every pixel's
+/// count with the oracle's; returns the number of pixels covered.
+fn assert_matches_oracle(what: &str, o: Ortho, positions: &[P256], indices: &[[u16; 3]]) -> usize {
+    let expected = oracle(o, positions, indices);
+    let mut t = CountingTarget::new(o.size, o.size);
+    let vs: Vec<Vec3> = positions.iter().map(|&p| Ortho::vec3(p)).collect();
+    draw(&o.camera(), &vs, indices, false, &mut t);
+    assert_eq!(
+        t.outside, 0,
+        "{what}: {} writes outside the target",
+        t.outside
+    );
+    let w = o.size as usize;
+    let diffs: Vec<String> = expected
+        .iter()
+        .zip(&t.counts)
+        .enumerate()
+        .filter(|(_, (e, k))| e != k)
+        .take(12)
+        .map(|(i, (e, k))| format!("({}, {}): expected {e}, written {k}", i % w, i / w))
+        .collect();
+    assert!(
+        diffs.is_empty(),
+        "{what}: pixel counts differ from the oracle (first 12):\n{}\npositions (1/256 eye units) {positions:?}\nsnapped (1/16 px) {:?}\nindices {indices:?}",
+        diffs.join("\n"),
+        positions.iter().map(|&p| o.snap(p)).collect::<Vec<_>>()
+    );
+    assert!(
+        expected.iter().all(|&c| c <= 1),
+        "{what}: the oracle itself double-covers"
+    );
+    t.written()
+}
+
+// ---------------------------------------------------------------------------
+// (a) Closed meshes
+// ---------------------------------------------------------------------------
+
+/// Sub-pixel camera offsets (world units; a pixel is about 0.02 here).
+const OFFSETS: [[f64; 2]; 5] = [
+    [0.0, 0.0],
+    [0.012_345, -0.007_13],
+    [-0.003_1, 0.019_7],
+    [1.0 / 3.0 * 0.01, 0.377 / 7.0],
+    [0.031_25, 0.031_25],
+];
+
+fn closed_scene(mesh: MeshDesc, eye: [f64; 3], off: [f64; 2], w: u32, h: u32) -> SceneDesc {
+    let camera = CameraDesc {
+        eye: [eye[0] + off[0], eye[1] + off[1], eye[2]],
+        target: [off[0], off[1], 0.0],
+        up: [0.0, 1.0, 0.0],
+        near: 0.5,
+        far: 20.0,
+        projection: Projection::Perspective { fovy_deg: 50.0 },
+    };
+    let mut s = SceneDesc::new(w, h, camera, mesh);
+    s.cull = true;
+    s.depth = false;
+    s.shading = Shading::Flat;
+    s.lights = vec![LightDesc::directional([0.3, 0.5, 1.0])];
+    s
+}
+
+/// Every pixel written at most once, every pixel inside the reference's
+/// silhouette exactly once, no hole, and kernel/reference coverage
+/// differing only on the reference's silhouette pixels.
+fn check_closed(name: &str, scene: &SceneDesc) -> usize {
+    let (w, h) = (scene.width, scene.height);
+    let k = KernelScene::new(scene).expect("kernel scene");
+    let mut t = CountingTarget::new(w, h);
+    let mut depth = vec![0u16; (w * h) as usize];
+    let mut cache = vec![CachedVertex::default(); scene.mesh.positions.len()];
+    k.render(&mut t, &mut depth, &mut cache).expect("render");
+    let r = reference::render(scene).expect("reference");
+    assert_eq!(t.outside, 0, "{name}: writes outside the target");
+    let doubles = t.doubles();
+    assert!(
+        doubles.is_empty(),
+        "{name}: {} pixels written more than once, e.g. {:?}",
+        doubles.len(),
+        &doubles[..doubles.len().min(10)]
+    );
+    let refc = |x: i32, y: i32| x >= 0 && y >= 0 && r.pixel(x as u32, y as u32).is_some();
+    let (mut interior, mut mismatches) = (0, 0);
+    for y in 0..h as i32 {
+        for x in 0..w as i32 {
+            let neighbours = (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (x + dx, y + dy)));
+            let all_ref = neighbours.clone().all(|(a, b)| refc(a, b));
+            let none_ref = neighbours.clone().all(|(a, b)| !refc(a, b));
+            let kc = t.count(x, y);
+            if all_ref {
+                interior += 1;
+                assert_eq!(kc, 1, "{name}: hole at ({x}, {y}) inside the silhouette");
+            }
+            if none_ref {
+                assert_eq!(
+                    kc, 0,
+                    "{name}: ({x}, {y}) written far outside the silhouette"
+                );
+            }
+            if (kc == 1) != refc(x, y) {
+                mismatches += 1;
+            }
+            // A hole of the kernel's own: unwritten, its 4 neighbours written.
+            if kc == 0 {
+                let around = [(1, 0), (-1, 0), (0, 1), (0, -1)];
+                let closed = around.iter().all(|&(dx, dy)| t.count(x + dx, y + dy) == 1);
+                assert!(!closed, "{name}: isolated unwritten pixel ({x}, {y})");
+            }
+        }
+    }
+    let covered = r.covered_count();
+    assert!(interior > 100, "{name}: silhouette too small to test");
+    assert!(
+        mismatches * 100 <= covered,
+        "{name}: {mismatches} coverage mismatches of {covered}"
+    );
+    println!(
+        "{name}: {} written once, {interior} interior, {mismatches} silhouette mismatches vs reference",
+        t.written()
+    );
+    t.written()
+}
+
+#[test]
+fn closed_sphere_each_pixel_once() {
+    for (i, off) in OFFSETS.iter().enumerate() {
+        for (j, eye) in [[0.0, 0.0, 3.0], [1.3, 0.9, 2.4]].into_iter().enumerate() {
+            let s = closed_scene(generate::sphere(48, 24, 1.0), eye, *off, 97, 83);
+            check_closed(&format!("sphere eye {j} offset {i}"), &s);
+        }
+    }
+}
+
+#[test]
+fn closed_cube_each_pixel_once() {
+    for (i, off) in OFFSETS.iter().enumerate() {
+        for (j, eye) in [[2.0, 1.5, 3.0], [-1.7, -2.2, 2.5], [0.0, 0.0, 3.0]]
+            .into_iter()
+            .enumerate()
+        {
+            let s = closed_scene(generate::cube(1.5), eye, *off, 101, 77);
+            check_closed(&format!("cube eye {j} offset {i}"), &s);
+        }
+    }
+}
+
+#[test]
+fn closed_torus_each_pixel_once() {
+    // Seen along its axis, no two front faces of a torus overlap.
+    for (i, off) in OFFSETS.iter().enumerate() {
+        let s = closed_scene(
+            generate::torus(1.0, 0.4, 40, 20),
+            [0.0, 0.0, 3.5],
+            *off,
+            96,
+            96,
+        );
+        check_closed(&format!("torus offset {i}"), &s);
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (b) Fans around a shared vertex
+// ---------------------------------------------------------------------------
+
+/// A fan of `n` triangles around `centre` (1/256 eye units), rim radius
+/// `radius`, first rim vertex at angle `phase`; rim vertices rounded to
+/// the 1/256 grid (or to the 1/16 grid if `coarse`).
+fn fan(
+    n: usize,
+    centre: P256,
+    radius: f64,
+    phase: f64,
+    coarse: bool,
+) -> (Vec<P256>, Vec<[u16; 3]>) {
+    let grid = if coarse { 16.0 } else { 1.0 };
+    let mut p = vec![centre];
+    for k in 0..n {
+        let a = phase + std::f64::consts::TAU * k as f64 / n as f64;
+        let x = centre.0 as f64 + 256.0 * radius * a.cos();
+        let y = centre.1 as f64 + 256.0 * radius * a.sin();
+        p.push((
+            ((x / grid).round() * grid) as i64,
+            ((y / grid).round() * grid) as i64,
+        ));
+    }
+    // Counter-clockwise (front faces).
+    let idx = (0..n)
+        .map(|k| [0, 1 + k as u16, 1 + ((k + 1) % n) as u16])
+        .collect();
+    (p, idx)
+}
+
+/// The same rim polygon fanned from its first rim vertex (no centre).
+fn rim_fan(n: usize) -> Vec<[u16; 3]> {
+    (1..n - 1)
+        .map(|k| [1, 1 + k as u16, 2 + k as u16])
+        .collect()
+}
+
+const FAN_SIZES: [usize; 4] = [3, 7, 16, 33];
+
+#[test]
+fn fan_polygon_exactly_once() {
+    let o = Ortho { size: 64, ppu: 1 };
+    // Centres (1/256 eye units; eye 0 is the window's centre line, so
+    // 128 = half a pixel): on a pixel centre, on a pixel corner, on a
+    // 1/16 sub-pixel step, off every grid.
+    let centres: [P256; 5] = [
+        (128, -128),
+        (0, 0),
+        (16 * 5 + 3, -(16 * 11)),
+        (77, -201),
+        (-1234, 987),
+    ];
+    for n in FAN_SIZES {
+        for (ci, &c) in centres.iter().enumerate() {
+            for (phase, coarse) in [(0.0, false), (0.1234, false), (0.0, true), (0.77, true)] {
+                let (p, idx) = fan(n, c, 27.0, phase, coarse);
+                let what = format!("fan N={n} centre {ci} phase {phase} coarse {coarse}");
+                let fan_px = assert_matches_oracle(&what, o, &p, &idx);
+                // The polygon, triangulated another way, covers the same
+                // pixels (the oracle agreed with each).
+                let rim_px =
+                    assert_matches_oracle(&format!("{what} (rim fan)"), o, &p, &rim_fan(n));
+                assert_eq!(fan_px, rim_px, "{what}: fan and polygon differ");
+                let r = 27.0f64;
+                let area = 0.5 * n as f64 * r * r * (std::f64::consts::TAU / n as f64).sin();
+                assert!(
+                    (fan_px as f64 - area).abs() < 0.05 * area + 60.0,
+                    "{what}: {fan_px} pixels for an area of {area:.0}"
+                );
+            }
+        }
+    }
+}
+
+/// Perspective fans at arbitrary positions (no exact oracle): counts at
+/// most 1, and the fan covers exactly the pixels its polygon covers.
+#[test]
+fn perspective_fan_same_as_polygon() {
+    let camera = Camera::look_at([0.13, -0.21, 3.0], [0.1, 0.05, 0.0], [0.1, 1.0, 0.0])
+        .and_then(|c| c.with_projection(CamProjection::Perspective { fovy_deg: 53.0 }, 0.5, 20.0))
+        .expect("camera");
+    for n in FAN_SIZES {
+        for (k, (cx, cy, tilt)) in [(0.0123, -0.0456, 0.0), (0.37, 0.21, 0.4), (-0.5, 0.3, -0.7)]
+            .into_iter()
+            .enumerate()
+        {
+            let mut p = vec![Vec3::from_f64([cx, cy, 0.0]).expect("p")];
+            for j in 0..n {
+                let a = 0.31 + std::f64::consts::TAU * j as f64 / n as f64;
+                let (x, y) = (cx + 0.9 * a.cos(), cy + 0.9 * a.sin());
+                p.push(Vec3::from_f64([x, y, tilt * x]).expect("p"));
+            }
+            let idx: Vec<[u16; 3]> = (0..n)
+                .map(|j| [0, 1 + j as u16, 1 + ((j + 1) % n) as u16])
+                .collect();
+            let mut a = CountingTarget::new(90, 70);
+            let mut b = CountingTarget::new(90, 70);
+            draw(&camera, &p, &idx, true, &mut a);
+            draw(&camera, &p, &rim_fan(n), true, &mut b);
+            let what = format!("perspective fan N={n} #{k}");
+            assert_eq!(a.outside + b.outside, 0, "{what}: writes outside");
+            assert!(a.doubles().is_empty(), "{what}: doubles {:?}", a.doubles());
+            assert!(
+                b.doubles().is_empty(),
+                "{what} (rim): doubles {:?}",
+                b.doubles()
+            );
+            assert!(a.written() > 500, "{what}: {} pixels", a.written());
+            assert!(
+                a.counts == b.counts,
+                "{what}: the fan and its polygon cover different pixels"
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (c) Two triangles sharing a long edge
+// ---------------------------------------------------------------------------
+
+fn p256(lim: i64) -> impl Strategy<Value = P256> {
+    (-lim..=lim, -lim..=lim)
+}
+
+fn cross(o: P256, a: P256, b: P256) -> i64 {
+    (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+}
+
+fn config(default_cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default_cases);
+    ProptestConfig {
+        cases,
+        max_global_rejects: cases * 4 + 1024,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(1024))]
+
+    /// Quad `p0 p1 p2 p3` split along the long diagonal `p0 p2` (from near
+    /// one corner of the 64 × 64 target to near the opposite one, possibly
+    /// off-screen), `p1` and `p3` on either side of it.
+    #[test]
+    fn shared_long_edge(
+        a in p256(256 * 6), b in p256(256 * 6),
+        m1 in p256(256 * 20), m3 in p256(256 * 20),
+        flip in any::<bool>(), cw in any::<bool>(),
+    ) {
+        let o = Ortho { size: 64, ppu: 1 };
+        let c = 256 * 30;
+        let (p0, p2) = if flip {
+            ((-c + a.0, -c + a.1), (c + b.0, c + b.1))
+        } else {
+            ((-c + a.0, c + a.1), (c + b.0, -c + b.1))
+        };
+        let (p1, p3) = (m1, m3);
+        // p1 and p3 strictly on opposite sides of the diagonal, also once
+        // snapped to 1/16 pixel (else the two triangles overlap).
+        prop_assume!(cross(p0, p2, p1) > 0 && cross(p0, p2, p3) < 0);
+        let [s0, s1, s2, s3] = [p0, p1, p2, p3].map(|p| o.snap(p));
+        prop_assume!(edge(s0, s2, s1).signum() * edge(s0, s2, s3).signum() < 0);
+        let pos = [p0, p1, p2, p3];
+        let idx: Vec<[u16; 3]> = if cw {
+            vec![[0, 2, 1], [0, 3, 2]]
+        } else {
+            vec![[0, 1, 2], [0, 2, 3]]
+        };
+        let covered = assert_matches_oracle("shared edge", o, &pos, &idx);
+        // If the quad is convex, its other diagonal covers the same pixels.
+        if edge(s1, s3, s0).signum() * edge(s1, s3, s2).signum() < 0 {
+            let other = assert_matches_oracle("other diagonal", o, &pos, &[[1, 2, 3], [1, 3, 0]]);
+            prop_assert_eq!(covered, other);
+        }
+    }
+
+    /// Random triangles, partly or far off-screen, many pixels per eye
+    /// unit: exactly the oracle's pixels, nothing outside the target.
+    #[test]
+    fn off_screen_triangles_match_oracle(
+        v in prop::collection::vec(p256(256 * 100), 3..=6),
+    ) {
+        let o = Ortho { size: 64, ppu: 32 };
+        let n = v.len() as u16;
+        let idx: Vec<[u16; 3]> = (1..n - 1).map(|k| [0, k, k + 1]).collect();
+        // A fan of a random polygon may self-overlap: check each piece alone.
+        for t in &idx {
+            let pos = t.map(|i| v[i as usize]);
+            assert_matches_oracle("off-screen triangle", o, &pos, &[[0, 1, 2]]);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (d) Nothing outside the target
+// ---------------------------------------------------------------------------
+
+#[test]
+fn huge_triangles_around_the_screen_once() {
+    // 64 × 64 pixels over 2 units: vertices at ±100 units are ±3200 px.
+    let o = Ortho { size: 64, ppu: 32 };
+    let big = 256 * 100;
+    let cases: [NamedMesh; 3] = [
+        (
+            "one triangle",
+            vec![(-big, -big), (big, -big / 3), (-big / 2, big)],
+            vec![[0, 1, 2]],
+        ),
+        (
+            "quad",
+            vec![(-big, -big), (big, -big), (big, big), (-big, big)],
+            vec![[0, 1, 2], [0, 2, 3]],
+        ),
+        (
+            "fan around the centre",
+            vec![(3, -5), (big, 0), (0, big), (-big, 0), (0, -big)],
+            vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]],
+        ),
+    ];
+    for (name, pos, idx) in cases {
+        let n = assert_matches_oracle(name, o, &pos, &idx);
+        assert_eq!(n, 64 * 64, "{name}: the screen is not covered");
+    }
+}
+
+/// The camera inside a box, looking around: every pixel is written exactly
+/// once (culling off, no depth test), across near-plane clipping of
+/// triangles that reach far off-screen and behind the eye.
+#[test]
+fn inside_a_box_every_pixel_once() {
+    let mesh = generate::cube(140.0);
+    let positions: Vec<Vec3> = mesh
+        .positions
+        .iter()
+        .map(|p| Vec3::from_f64(*p).expect("p"))
+        .collect();
+    let indices: Vec<[u16; 3]> = mesh.indices.iter().map(|t| t.map(|i| i as u16)).collect();
+    let eyes = [[0.0, 0.0, 0.0], [1.3, -2.1, 0.7], [-2.9, 0.4, 2.2]];
+    let dirs = [
+        [0.0, 0.0, -1.0],
+        [1.0, 1.0, 1.0],
+        [0.3, -0.9, 0.2],
+        [-1.0, 0.2, 0.05],
+        [0.7, 0.1, -0.7],
+    ];
+    for eye in eyes {
+        for d in dirs {
+            let target = [eye[0] + d[0], eye[1] + d[1], eye[2] + d[2]];
+            let camera = Camera::look_at(eye, target, [0.0, 1.0, 0.1])
+                .and_then(|c| {
+                    c.with_projection(CamProjection::Perspective { fovy_deg: 70.0 }, 0.1, 127.0)
+                })
+                .expect("camera");
+            let mut t = CountingTarget::new(80, 60);
+            draw(&camera, &positions, &indices, false, &mut t);
+            let what = format!("inside box, eye {eye:?} looking {d:?}");
+            assert_eq!(t.outside, 0, "{what}: writes outside");
+            let holes = t.counts.iter().filter(|&&c| c == 0).count();
+            assert!(
+                holes == 0 && t.doubles().is_empty(),
+                "{what}: {holes} holes, doubles {:?}",
+                t.doubles()
+            );
+        }
+    }
+}
+
+/// Triangles crossing the near plane and the screen's edges, in
+/// perspective: nothing outside the target, nothing twice.
+#[test]
+fn near_plane_and_edges_nothing_outside() {
+    let camera = Camera::look_at([0.0, 0.5, 0.0], [0.0, 0.3, -2.0], [0.0, 1.0, 0.0])
+        .and_then(|c| c.with_projection(CamProjection::Perspective { fovy_deg: 70.0 }, 0.1, 100.0))
+        .expect("camera");
+    let floor = generate::plane(120.0, 7);
+    let positions: Vec<Vec3> = floor
+        .positions
+        .iter()
+        .map(|p| Vec3::from_f64([p[0], 0.0, -p[1]]).expect("p"))
+        .collect();
+    let indices: Vec<[u16; 3]> = floor.indices.iter().map(|t| t.map(|i| i as u16)).collect();
+    for (w, h) in [(64, 48), (1, 1), (1, 37), (53, 1), (3, 2)] {
+        let mut t = CountingTarget::new(w, h);
+        let stats = draw(&camera, &positions, &indices, false, &mut t);
+        assert_eq!(t.outside, 0, "{w}x{h}: writes outside");
+        assert!(t.doubles().is_empty(), "{w}x{h}: doubles {:?}", t.doubles());
+        assert!(stats.clipped > 0, "{w}x{h}: nothing crossed the near plane");
+        // The floor fills the lower half of the view.
+        let (x, y) = (w as i32 / 2, h as i32 - 1);
+        assert!(t.count(x, y) == 1, "{w}x{h}: ({x}, {y}) not drawn");
+    }
+}
+
+#[test]
+fn tiny_and_empty_targets() {
+    let o = Ortho { size: 64, ppu: 32 };
+    let big = 256 * 100;
+    let pos: Vec<Vec3> = [(-big, -big), (big, -big), (big, big), (-big, big)]
+        .iter()
+        .map(|&p| Ortho::vec3(p))
+        .collect();
+    let idx = [[0u16, 1, 2], [0, 2, 3]];
+    for (w, h, expect) in [(1, 1, 1), (0, 0, 0), (0, 5, 0), (5, 0, 0), (1, 2, 2)] {
+        let mut t = CountingTarget::new(w, h);
+        let stats = draw(&o.camera(), &pos, &idx, false, &mut t);
+        assert_eq!(t.outside, 0, "{w}x{h}: writes outside");
+        assert_eq!(t.written(), expect, "{w}x{h}: {stats:?}");
+        assert!(t.doubles().is_empty(), "{w}x{h}: doubles");
+    }
+    // Also a closed mesh through the host bridge.
+    for (w, h) in [(1, 1), (0, 0)] {
+        let s = closed_scene(
+            generate::sphere(16, 8, 1.0),
+            [0.0, 0.0, 3.0],
+            [0.0; 2],
+            w,
+            h,
+        );
+        let k = KernelScene::new(&s).expect("kernel scene");
+        let mut t = CountingTarget::new(w, h);
+        let mut depth = vec![0u16; (w * h) as usize];
+        let mut cache = vec![CachedVertex::default(); s.mesh.positions.len()];
+        k.render(&mut t, &mut depth, &mut cache).expect("render");
+        assert_eq!(t.outside, 0);
+        assert_eq!(
+            t.written(),
+            (w * h) as usize,
+            "{w}x{h}: the sphere covers the centre"
+        );
+    }
+}
+
+/// A target whose bounding box does not start at (0, 0): the same pixels,
+/// shifted, and nothing outside.
+#[test]
+fn offset_target_origin() {
+    let o = Ortho { size: 64, ppu: 1 };
+    let (p, idx) = fan(16, (77, -201), 40.0, 0.3, false);
+    let vs: Vec<Vec3> = p.iter().map(|&q| Ortho::vec3(q)).collect();
+    let mut plain = CountingTarget::new(64, 64);
+    draw(&o.camera(), &vs, &idx, true, &mut plain);
+    let mut failures = Vec::new();
+    for origin in [Point::new(-13, 7), Point::new(250, -3000), Point::new(5, 0)] {
+        let mut t = CountingTarget::with_origin(origin, 64, 64);
+        draw(&o.camera(), &vs, &idx, true, &mut t);
+        assert_eq!(t.outside, 0, "origin {origin:?}: writes outside");
+        let differ: Vec<(usize, usize, u16, u16)> = (0..64 * 64)
+            .filter(|&i| t.counts[i] != plain.counts[i])
+            .map(|i| (i % 64, i / 64, plain.counts[i], t.counts[i]))
+            .collect();
+        if !differ.is_empty() {
+            failures.push(format!(
+                "origin {origin:?}: {} of {} pixels differ from the target at (0, 0), \
+                 {} written; first (x, y, count at origin 0, count here): {:?}",
+                differ.len(),
+                plain.written(),
+                t.written(),
+                &differ[..differ.len().min(8)]
+            ));
+        }
+    }
+    assert!(plain.written() > 1000);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Runs go through `fill_contiguous` (one call per span), not per-pixel
+/// `draw_iter` items.
+#[test]
+fn spans_go_through_fill_contiguous() {
+    let o = Ortho { size: 64, ppu: 1 };
+    let (p, idx) = fan(7, (128, -128), 27.0, 0.0, false);
+    let vs: Vec<Vec3> = p.iter().map(|&q| Ortho::vec3(q)).collect();
+    let mut t = CountingTarget::new(64, 64);
+    draw(&o.camera(), &vs, &idx, true, &mut t);
+    assert_eq!(t.iter_pixels, 0, "pixels sent one by one through draw_iter");
+    assert!(t.fill_calls > 0);
+    // At most one call per row and triangle.
+    assert!(
+        t.fill_calls <= 64 * idx.len(),
+        "{} fill calls",
+        t.fill_calls
+    );
+}
