@@ -557,13 +557,10 @@ impl SpotCone {
         if !(0.0..=90.0).contains(&cutoff_deg) {
             return Err(LightError::BadCutoff);
         }
-        if !(0.0..=4096.0).contains(&exponent) {
-            return Err(LightError::BadExponent);
-        }
         Ok(SpotCone {
             axis: unit_from_f64(axis)?,
             delta_cutoff: one_minus_cos_q28(cutoff_deg),
-            exponent: Exponent::from_bits((exponent * 256.0 + 0.5) as u32),
+            exponent: Exponent::from_f64(exponent).map_err(|_| LightError::BadExponent)?,
         })
     }
 }

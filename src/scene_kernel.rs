@@ -167,7 +167,8 @@ impl KernelScene {
             ambient: rgb("material.ambient", m.ambient)?,
             diffuse: rgb("material.diffuse", m.diffuse)?,
             specular: rgb("material.specular", m.specular)?,
-            shininess: Exponent::from_bits((m.shininess.clamp(0.0, 4096.0) * 256.0 + 0.5) as u32),
+            shininess: Exponent::from_f64(m.shininess)
+                .map_err(|e| KernelSceneError::Format("material.shininess", e))?,
             global_ambient: rgb("global_ambient", d.global_ambient)?,
             lights,
             background: Shade::from_bits(

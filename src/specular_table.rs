@@ -164,7 +164,10 @@ impl Exponent {
         }
     }
 
-    /// An exponent from a float, rounded to the nearest 1/256 (halves up).
+    /// An exponent from a float, rounded to the nearest 1/256 (halves up);
+    /// a non-zero exponent below 1/512 becomes 1/256, not 0, because SPEC.md
+    /// makes `x^0 = 1` even where `x ≤ 0` while `x^n = 0` there for any
+    /// `n > 0`.
     ///
     /// Errors: [`FormatError::NotFinite`] for NaN and ±∞,
     /// [`FormatError::OutOfRange`] for negative values and values above 4096.
@@ -173,31 +176,29 @@ impl Exponent {
     /// ```
     /// use fixshade::{Exponent, vector::FormatError};
     /// assert_eq!(Exponent::from_f32(0.5).unwrap().to_bits(), 128);
+    /// assert_eq!(Exponent::from_f32(1e-4).unwrap().to_bits(), 1);
     /// assert_eq!(Exponent::from_f32(4096.0), Ok(Exponent::MAX));
     /// assert_eq!(Exponent::from_f32(f32::NAN), Err(FormatError::NotFinite));
     /// assert_eq!(Exponent::from_f32(-1.0), Err(FormatError::OutOfRange));
     /// assert_eq!(Exponent::from_f32(4096.5), Err(FormatError::OutOfRange));
     /// ```
     pub fn from_f32(n: f32) -> Result<Exponent, FormatError> {
+        Exponent::from_f64(n as f64)
+    }
+
+    /// As [`Exponent::from_f32`], from an `f64`.
+    pub fn from_f64(n: f64) -> Result<Exponent, FormatError> {
         if !n.is_finite() {
             return Err(FormatError::NotFinite);
         }
         if !(0.0..=4096.0).contains(&n) {
             return Err(FormatError::OutOfRange);
         }
-        // 0 ≤ s ≤ 2^20, exact (a power-of-two scaling of an f32).
+        // 0 ≤ s ≤ 2^20; s + 0.5 is exact enough in f64 (53 bits) and its
+        // floor is round-half-up of s.
         let s = n * 256.0;
-        // `as` truncates towards 0; s is in range, so this is floor(s).
-        let whole = s as u32;
-        // s − whole ∈ [0, 1) is exact in f32 (both lie in the same binade or
-        // below, and s has at most 24 significant bits).
-        let raw = if s - whole as f32 >= 0.5 {
-            whole + 1
-        } else {
-            whole
-        };
-        // raw ≤ 2^20 since s ≤ 2^20 and rounding up only happens when
-        // s > whole, i.e. whole < 2^20.
+        let raw = (s + 0.5) as u32;
+        let raw = if raw == 0 && n > 0.0 { 1 } else { raw };
         Ok(Exponent::from_bits(raw))
     }
 

@@ -215,7 +215,8 @@ fn exponent_conversions() {
     assert_eq!(Exponent::from_f32(-0.0), Ok(Exponent::ZERO));
     assert_eq!(Exponent::from_f32(10.25).unwrap().to_bits(), 2624);
     assert_eq!(Exponent::from_f32(1.0 / 512.0).unwrap().to_bits(), 1); // half up
-    assert_eq!(Exponent::from_f32(1.0 / 1024.0).unwrap().to_bits(), 0);
+                                                                       // A non-zero exponent never becomes 0 (x^0 = 1 even for x ≤ 0).
+    assert_eq!(Exponent::from_f32(1.0 / 1024.0).unwrap().to_bits(), 1);
     assert_eq!(Exponent::from_f32(4095.999).unwrap(), Exponent::MAX);
     assert_eq!(Exponent::from_f32(4096.0), Ok(Exponent::MAX));
     assert_eq!(Exponent::from_f32(f32::NAN), Err(FormatError::NotFinite));
@@ -232,11 +233,15 @@ fn exponent_conversions() {
     assert!(Exponent::ZERO.is_zero() && !Exponent::from_bits(1).is_zero());
 }
 
-/// A longer random search (about 40 million points; run with
-/// `cargo test --release --test specular_table -- --ignored --nocapture`).
+/// A random search over exponents in steps of 1/4 up to 2048 and 4096
+/// (about 1.6 million points; 41 million with `FIXSHADE_EXTENDED=1`).
 #[test]
-#[ignore]
 fn extended_search() {
+    let per_n = if std::env::var_os("FIXSHADE_EXTENDED").is_some() {
+        5000
+    } else {
+        200
+    };
     let mut rng = Rng(0x0123_4567_89AB_CDEF);
     let mut worst = (0.0, 0, 0);
     for raw in (0..=(2048u32 << 8)).step_by(64).chain([1u32 << 20]) {
@@ -246,7 +251,7 @@ fn extended_search() {
         } else {
             (12.0 * 256.0 / raw as f64).min(1.0)
         };
-        for j in 0..5000 {
+        for j in 0..per_n {
             // Half the points in the fall-off region, half anywhere in [0, 1].
             let s = if j % 2 == 0 { span } else { 1.0 };
             let d = (rng.unit() * s * ONE_Q28) as u32;
