@@ -419,7 +419,8 @@ impl<const N: usize> Triangle<N> {
     pub fn for_each_span(&self, mut f: impl FnMut(&Span<N>)) {
         let mut row = self.origin;
         let mut edges = self.edges;
-        for y in self.y_lo..=self.y_hi {
+        let mut y = self.y_lo;
+        while y <= self.y_hi {
             let (mut lo, mut hi) = (self.x_lo, self.x_hi);
             let inside = edges.iter().all(|e| e.bound(&mut lo, &mut hi));
             if inside && lo <= hi {
@@ -454,6 +455,7 @@ impl<const N: usize> Triangle<N> {
             for e in edges.iter_mut() {
                 e.step();
             }
+            y += 1;
         }
     }
 }

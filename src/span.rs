@@ -324,11 +324,32 @@ pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
     let mut z = z;
     let mut written = 0;
     if let Some(row) = sink.row(y, x0, n as usize) {
-        for (p, stored) in row.iter_mut().zip(drow.iter_mut()) {
+        let len = row.len().min(drow.len());
+        let (row, drow) = (&mut row[..len], &mut drow[..len]);
+        let z_end = z + dz * (len as i64 - 1).max(0);
+        if (0..65535 << 8).contains(&z) && (0..65535 << 8).contains(&z_end) {
+            // Depth stays inside the u16 range on the whole span (it is
+            // linear): no clamp per pixel.
+            let mut z = z as i32;
+            let dz = dz as i32;
+            for k in 0..len {
+                let z16 = (z >> 8) as u16;
+                if z16 < drow[k] {
+                    drow[k] = z16;
+                    row[k] = sh.next();
+                    written += 1;
+                } else {
+                    sh.skip(1);
+                }
+                z = z.wrapping_add(dz);
+            }
+            return Ok(written);
+        }
+        for k in 0..len {
             let z16 = (z >> 8).clamp(0, 65535) as u16;
-            if z16 < *stored {
-                *stored = z16;
-                *p = sh.next();
+            if z16 < drow[k] {
+                drow[k] = z16;
+                row[k] = sh.next();
                 written += 1;
             } else {
                 sh.skip(1);
