@@ -161,7 +161,7 @@ const F_FRONT: u8 = 2;
 const F_BACK: u8 = 4;
 
 /// One vertex's per-frame data, in a cache the caller provides (one per
-/// mesh vertex): about 80 bytes.
+/// mesh vertex): 104 bytes (`i64` fields are 8-aligned on Cortex-M too).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CachedVertex {
     eye: Vec3,
