@@ -1,4 +1,4 @@
-//! fixshade: a `no_std`, allocation-free, fixed-point shading kernel.
+#![doc = include_str!("../README.md")]
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
