@@ -140,3 +140,41 @@ fn framebuffer_fast_path_matches_draw_target_path() {
         }
     }
 }
+
+/// Culling off and two-sided lighting: back faces are drawn and lit with
+/// the negated normal, in every mode (an open mesh seen from both sides).
+#[test]
+fn two_sided_open_mesh() {
+    let camera = CameraDesc {
+        eye: [1.5, 1.0, 2.5],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        near: 0.1,
+        far: 20.0,
+        projection: Projection::Perspective { fovy_deg: 55.0 },
+    };
+    // A torus cut in half by dropping every other triangle strip: its
+    // inside shows through the gaps.
+    let mut mesh = generate::torus(1.0, 0.4, 24, 12);
+    mesh.indices = mesh
+        .indices
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| (i / 24) % 2 == 0)
+        .map(|(_, t)| *t)
+        .collect();
+    let mut s = SceneDesc::new(200, 150, camera, mesh);
+    s.cull = false;
+    s.two_sided = true;
+    s.material.specular = [0.4; 3];
+    s.material.shininess = 20.0;
+    s.lights = vec![
+        LightDesc::point([2.0, 3.0, 1.0]),
+        LightDesc::directional([-1.0, 0.5, 0.3]),
+    ];
+    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+        s.shading = shading;
+        let (e, _) = kernel_vs_reference(&s);
+        assert_within_bound(&format!("two-sided torus {shading:?}"), &e);
+    }
+}
