@@ -73,7 +73,8 @@ fn parse_args() -> Result<Args, Failure> {
             Some("--compare") => compare = true,
             Some("--raw") => {
                 raw = Some(PathBuf::from(
-                    args.next().ok_or_else(|| input("--raw needs a file name"))?,
+                    args.next()
+                        .ok_or_else(|| input("--raw needs a file name"))?,
                 ))
             }
             Some("--coverage") => {
@@ -89,9 +90,7 @@ fn parse_args() -> Result<Args, Failure> {
             _ => positional.push(PathBuf::from(arg)),
         }
     }
-    let [scene, out]: [PathBuf; 2] = positional
-        .try_into()
-        .map_err(|_| input(USAGE))?;
+    let [scene, out]: [PathBuf; 2] = positional.try_into().map_err(|_| input(USAGE))?;
     Ok(Args {
         scene,
         out,

@@ -7,9 +7,9 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use embedded_graphics::geometry::Size;
+use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::{Point, RawData};
-use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::render::CachedVertex;
 use fixshade::scene_desc::SceneDesc;
