@@ -104,6 +104,11 @@ fn run() -> Result<(), Failure> {
     let args = parse_args()?;
     let name = args.scene.display().to_string();
     let desc = load_scene(&args.scene).map_err(|e| input(format!("{name}: {e}")))?;
+    if desc.width == 0 || desc.height == 0 {
+        return Err(input(format!(
+            "{name}: width and height must be > 0 to write a PNG"
+        )));
+    }
     let kernel = KernelScene::new(&desc).map_err(|e| input(format!("{name}: {e}")))?;
 
     // The PNG comes from the kernel drawing into the simulator's display.
