@@ -33,5 +33,7 @@ pub mod generate;
 pub mod reference;
 #[cfg(feature = "reference")]
 pub mod scene_desc;
+#[cfg(feature = "scene-file")]
+pub mod scene_file;
 #[cfg(feature = "reference")]
 pub mod standard_scenes;
