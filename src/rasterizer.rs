@@ -204,17 +204,6 @@ fn floor_div(a: i64, b: i64) -> i64 {
     }
 }
 
-/// ⌈a / b⌉ for `b > 0`.
-#[inline]
-fn ceil_div(a: i64, b: i64) -> i64 {
-    let q = a / b;
-    if (a % b) > 0 {
-        q + 1
-    } else {
-        q
-    }
-}
-
 /// `1 / area` as a 32-bit mantissa and a shift: `1/a ≈ m / 2^sh`.
 #[derive(Clone, Copy, Debug)]
 struct Recip {
@@ -324,6 +313,7 @@ impl<const N: usize> Triangle<N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
     /// area, is a back face and `cull` is set, or cannot touch `clip`.
     /// A back face that is kept is reoriented (its `facing` says so).
+    #[inline(always)]
     pub fn setup(v: &[RasterVertex<N>; 3], clip: ClipRect, cull: bool) -> Option<Triangle<N>> {
         let a = area2(v);
         if a == 0 {
@@ -344,10 +334,12 @@ impl<const N: usize> Triangle<N> {
         let maxx = v[0].x.max(v[1].x).max(v[2].x);
         let miny = v[0].y.min(v[1].y).min(v[2].y);
         let maxy = v[0].y.max(v[1].y).max(v[2].y);
-        let x_lo = ceil_div(minx - 8, 16).max(clip.x0 as i64);
-        let x_hi = floor_div(maxx - 8, 16).min(clip.x1 as i64);
-        let y_lo = ceil_div(miny - 8, 16).max(clip.y0 as i64);
-        let y_hi = floor_div(maxy - 8, 16).min(clip.y1 as i64);
+        // ⌈(m − 8)/16⌉ = (m + 7) >> 4 and ⌊(m − 8)/16⌋ = (m − 8) >> 4
+        // (arithmetic shifts floor).
+        let x_lo = ((minx + 7) >> 4).max(clip.x0 as i64);
+        let x_hi = ((maxx - 8) >> 4).min(clip.x1 as i64);
+        let y_lo = ((miny + 7) >> 4).max(clip.y0 as i64);
+        let y_hi = ((maxy - 8) >> 4).min(clip.y1 as i64);
         if x_lo > x_hi || y_lo > y_hi {
             return None;
         }
@@ -415,7 +407,7 @@ impl<const N: usize> Triangle<N> {
     }
 
     /// Calls `f` with each non-empty span, top to bottom.
-    #[inline]
+    #[inline(always)]
     pub fn for_each_span(&self, mut f: impl FnMut(&Span<N>)) {
         let mut row = self.origin;
         let mut edges = self.edges;
@@ -458,4 +450,20 @@ impl<const N: usize> Triangle<N> {
             y += 1;
         }
     }
+}
+
+/// Sets up triangle `v` and calls `f` with each of its spans inside `clip`,
+/// top to bottom; returns how it faced, or `None` if it drew nothing
+/// (no area, culled, or no pixel centre inside). Set-up and span walk are
+/// one inlined step: the set-up triangle never leaves the stack frame.
+#[inline(always)]
+pub fn rasterize<const N: usize>(
+    v: &[RasterVertex<N>; 3],
+    clip: ClipRect,
+    cull: bool,
+    f: impl FnMut(&Span<N>),
+) -> Option<Facing> {
+    let t = Triangle::setup(v, clip, cull)?;
+    t.for_each_span(f);
+    Some(t.facing)
 }

@@ -38,7 +38,7 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{area2, ClipRect, RasterVertex, Span, Triangle, COORD_LIMIT};
+use crate::rasterizer::{area2, rasterize, ClipRect, RasterVertex, Span, COORD_LIMIT};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PhongPixels, PixelSink,
     SpanShader, TargetSink,
@@ -318,17 +318,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         {
             return Err(RenderError::DepthTooSmall);
         }
-        let proj = self
-            .camera
-            .projection_for(w, h)
-            .map_err(RenderError::Camera)?;
         let mut stats = DrawStats {
             triangles: mesh.indices.len() as u32,
             ..DrawStats::default()
         };
+        // An empty target draws nothing (and has no aspect ratio).
         let Some(clip) = ClipRect::of_size(w, h) else {
             return Ok(stats);
         };
+        let proj = self
+            .camera
+            .projection_for(w, h)
+            .map_err(RenderError::Camera)?;
         for c in cache[..n].iter_mut() {
             c.flags = 0;
         }
@@ -563,10 +564,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
                 let n = if lit_back { n.neg() } else { n };
                 let colour = self.r.lighting.shade(centroid(e), n);
+                let plain = RawU16::from(colour.to_rgb565()).into_inner();
                 stats.lit += 1;
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
-                self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_flat(t, colour, sink, depth, st)
+                self.fan(&verts[..count], stats, |sp, st| {
+                    self.span_flat(sp, colour, plain, sink, depth, st)
                 })
             }
             ShadingKind::Gouraud => {
@@ -582,8 +584,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         (b[2] * 31 + (1 << 15)) as i64,
                     ]
                 });
-                self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_gouraud(t, sink, depth, st)
+                self.fan(&verts[..count], stats, |sp, st| {
+                    self.span_gouraud(sp, sink, depth, st)
                 })
             }
             ShadingKind::Phong => {
@@ -602,8 +604,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         e[2] as i64,
                     ]
                 });
-                self.fan(&verts[..count], stats, |t, st| {
-                    self.spans_phong(t, sink, depth, st)
+                self.fan(&verts[..count], stats, |sp, st| {
+                    self.span_phong(sp, sink, depth, st)
                 })
             }
         }
@@ -635,110 +637,103 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         x_lo <= x_hi && y_lo <= y_hi
     }
 
-    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`.
+    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`, calling `span` for
+    /// each span until it fails.
+    #[inline(always)]
     fn fan<const N: usize, E>(
         &self,
         verts: &[RasterVertex<N>],
         stats: &mut DrawStats,
-        mut each: impl FnMut(&Triangle<N>, &mut DrawStats) -> Result<(), E>,
+        mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
     ) -> Result<(), E> {
+        let mut res = Ok(());
         for k in 1..verts.len() - 1 {
             let tri = [verts[0], verts[k], verts[k + 1]];
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
-            if let Some(t) = Triangle::setup(&tri, self.clip, false) {
+            let drawn = rasterize(&tri, self.clip, false, |s| {
+                if res.is_ok() {
+                    res = span(s, stats);
+                }
+            });
+            if drawn.is_some() {
                 stats.drawn += 1;
-                each(&t, stats)?;
+            }
+            if res.is_err() {
+                break;
             }
         }
-        Ok(())
+        res
     }
 
-    fn spans_flat<P: PixelSink, D: DepthTest>(
+    #[inline(always)]
+    fn span_flat<P: PixelSink, D: DepthTest>(
         &self,
-        t: &Triangle<1>,
+        s: &Span<1>,
         colour: Shade,
+        plain: u16,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), RenderError<P::Error>> {
-        let plain = RawU16::from(colour.to_rgb565()).into_inner();
-        let dither = self.r.options.dither;
-        let mut res = Ok(());
-        t.for_each_span(|s| {
-            if res.is_ok() {
-                let sh = FlatShader {
-                    plain,
-                    shade: colour,
-                    dither,
-                    x: s.x0,
-                    y: s.y,
-                };
-                res = self.send(s, sink, depth, stats, sh);
-            }
-        });
-        res
+        let sh = FlatShader {
+            plain,
+            shade: colour,
+            dither: self.r.options.dither,
+            x: s.x0,
+            y: s.y,
+        };
+        self.send(s, sink, depth, stats, sh)
     }
 
-    fn spans_gouraud<P: PixelSink, D: DepthTest>(
+    #[inline(always)]
+    fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
-        t: &Triangle<4>,
+        s: &Span<4>,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), RenderError<P::Error>> {
         let dither = self.r.options.dither;
-        let mut res = Ok(());
-        t.for_each_span(|s| {
-            if res.is_ok() {
-                let c = [s.start[1], s.start[2], s.start[3]];
-                let d = [s.step[1], s.step[2], s.step[3]];
-                let n = (s.x1 - s.x0 + 1) as u32;
-                res = match (dither, PackedGouraud::new(c, d, n)) {
-                    (false, Some(sh)) => self.send(s, sink, depth, stats, sh),
-                    _ => {
-                        let sh = ClampedGouraud {
-                            c,
-                            d,
-                            dither,
-                            x: s.x0,
-                            y: s.y,
-                        };
-                        self.send(s, sink, depth, stats, sh)
-                    }
-                };
-            }
-        });
-        res
-    }
-
-    fn spans_phong<P: PixelSink, D: DepthTest>(
-        &self,
-        t: &Triangle<7>,
-        sink: &mut P,
-        depth: &mut D,
-        stats: &mut DrawStats,
-    ) -> Result<(), RenderError<P::Error>> {
-        let dither = self.r.options.dither;
-        let mut res = Ok(());
-        t.for_each_span(|s| {
-            if res.is_ok() {
-                let mut cur = [0i64; 6];
-                let mut d = [0i64; 6];
-                cur.copy_from_slice(&s.start[1..]);
-                d.copy_from_slice(&s.step[1..]);
-                let sh = PhongPixels {
-                    lighting: &self.r.lighting,
-                    cur,
+        let c = [s.start[1], s.start[2], s.start[3]];
+        let d = [s.step[1], s.step[2], s.step[3]];
+        let n = (s.x1 - s.x0 + 1) as u32;
+        match (dither, PackedGouraud::new(c, d, n)) {
+            (false, Some(sh)) => self.send(s, sink, depth, stats, sh),
+            _ => {
+                let sh = ClampedGouraud {
+                    c,
                     d,
                     dither,
                     x: s.x0,
                     y: s.y,
                 };
-                res = self.send(s, sink, depth, stats, sh);
+                self.send(s, sink, depth, stats, sh)
             }
-        });
-        res
+        }
+    }
+
+    #[inline(always)]
+    fn span_phong<P: PixelSink, D: DepthTest>(
+        &self,
+        s: &Span<7>,
+        sink: &mut P,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), RenderError<P::Error>> {
+        let mut cur = [0i64; 6];
+        let mut d = [0i64; 6];
+        cur.copy_from_slice(&s.start[1..]);
+        d.copy_from_slice(&s.step[1..]);
+        let sh = PhongPixels {
+            lighting: &self.r.lighting,
+            cur,
+            d,
+            dither: self.r.options.dither,
+            x: s.x0,
+            y: s.y,
+        };
+        self.send(s, sink, depth, stats, sh)
     }
 
     /// One span through the depth test into the sink.

@@ -246,10 +246,12 @@ impl SpanShader for PackedGouraud {
         let mut chunks = row.chunks_exact_mut(4);
         for c in &mut chunks {
             let a = self.acc;
-            c[0] = px(a);
-            c[1] = px(a.wrapping_add(s));
-            c[2] = px(a.wrapping_add(s2));
-            c[3] = px(a.wrapping_add(s3));
+            c.copy_from_slice(&[
+                px(a),
+                px(a.wrapping_add(s)),
+                px(a.wrapping_add(s2)),
+                px(a.wrapping_add(s3)),
+            ]);
             self.acc = a.wrapping_add(s4);
         }
         for p in chunks.into_remainder() {
