@@ -9,7 +9,7 @@
 //! ```
 //!
 //! * `--reps N`: timed renders per configuration (default 15); the median and
-//!   the min–max spread are reported.
+//!   the spread (interquartile range and min–max) are reported.
 //! * `--out DIR`: where the two files go (default `report`).
 //! * `--no-callgrind`: skip the instruction count even if valgrind is there.
 //!
@@ -180,34 +180,48 @@ fn counted_frame(frame: &mut dyn FnMut()) {
 }
 
 /// Run times of one configuration, in seconds.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Timing {
     median: f64,
+    p25: f64,
+    p75: f64,
     min: f64,
     max: f64,
 }
 
-/// One warm-up call, then `reps` timed calls.
-fn time_reps(reps: usize, mut f: impl FnMut()) -> Timing {
-    f();
-    let mut t: Vec<f64> = (0..reps.max(1))
-        .map(|_| {
+/// Times every frame function `reps` times, in rounds (one call of each
+/// function per round, after a warm-up round), so that a burst of load on a
+/// shared machine spreads over all configurations instead of spoiling one.
+fn time_rounds(reps: usize, frames: &mut [Box<dyn FnMut()>]) -> Vec<Timing> {
+    for f in frames.iter_mut() {
+        f();
+    }
+    let mut samples = vec![Vec::with_capacity(reps); frames.len()];
+    for _ in 0..reps.max(1) {
+        for (f, t) in frames.iter_mut().zip(samples.iter_mut()) {
             let start = Instant::now();
             f();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
+            t.push(start.elapsed().as_secs_f64());
+        }
+    }
+    samples.into_iter().map(timing).collect()
+}
+
+/// Median, quartiles and extremes of some samples (at least one).
+fn timing(mut t: Vec<f64>) -> Timing {
     t.sort_by(f64::total_cmp);
-    let n = t.len();
-    let median = if n % 2 == 1 {
-        t[n / 2]
-    } else {
-        (t[n / 2 - 1] + t[n / 2]) / 2.0
+    // Quantile with linear interpolation between the sorted samples.
+    let q = |p: f64| {
+        let x = p * (t.len() - 1) as f64;
+        let (i, frac) = (x.floor() as usize, x.fract());
+        t[i] + (t[(i + 1).min(t.len() - 1)] - t[i]) * frac
     };
     Timing {
-        median,
+        median: q(0.5),
+        p25: q(0.25),
+        p75: q(0.75),
         min: t[0],
-        max: t[n - 1],
+        max: t[t.len() - 1],
     }
 }
 
@@ -229,6 +243,7 @@ struct Row {
     model: ErrorStats,
     /// This configuration's output against the truth.
     total: ErrorStats,
+    /// Filled in once every configuration has been timed.
     time: Timing,
     instructions: Option<u64>,
 }
@@ -372,6 +387,8 @@ fn run(args: &Args) -> Result<(), Error> {
     let scenes = standard_scenes::all();
     let all = configs();
     let mut rows: Vec<Row> = Vec::new();
+    // One frame function per configuration, timed later in rounds.
+    let mut frames: Vec<Box<dyn FnMut()>> = Vec::new();
     for (name, base) in &scenes {
         // The reference frames of every mode, once (reused by the kernel rows).
         let refs: Vec<(Shading, RefFrame)> = modes(name)
@@ -400,38 +417,42 @@ fn run(args: &Args) -> Result<(), Error> {
                     let fixed = compare(&frame.pixels, &frame.covered, own_ref);
                     let total = compare(&frame.pixels, &frame.covered, truth);
                     let mut bufs = KernelBuffers::new(&d);
-                    let time = time_reps(args.reps, || bufs.frame(&scene));
+                    frames.push(Box::new(move || bufs.frame(&scene)));
                     Row {
                         config: *c,
                         fixed: Some(fixed),
                         total,
                         model,
-                        time,
+                        time: Timing::default(),
                         instructions: None,
                     }
                 }
                 Engine::Reference => {
-                    let time = time_reps(args.reps, || {
+                    frames.push(Box::new(move || {
                         black_box(reference::render(black_box(&d)).expect("renders"));
-                    });
+                    }));
                     Row {
                         config: *c,
                         fixed: None,
                         total: model.clone(),
                         model,
-                        time,
+                        time: Timing::default(),
                         instructions: None,
                     }
                 }
             };
-            eprintln!(
-                "{name} {:<26} median {:>9.3} ms  total error mean {:.4} LSB",
-                c.label(),
-                row.time.median * 1e3,
-                row.total.mean_error
-            );
             rows.push(row);
         }
+    }
+    for (row, time) in rows.iter_mut().zip(time_rounds(args.reps, &mut frames)) {
+        eprintln!(
+            "{} {:<26} median {:>9.3} ms  total error mean {:.4} LSB",
+            row.config.scene,
+            row.config.label(),
+            time.median * 1e3,
+            row.total.mean_error
+        );
+        row.time = time;
     }
     if args.callgrind {
         if let Some(counts) = count_instructions(all.len()) {
@@ -608,11 +629,11 @@ fn markdown(rows: &[Row], args: &Args) -> String {
         w,
         "| scene | configuration | fixed-point max r/g/b | fixed-point mean | fixed-point exact | \
          coverage mismatches | model max r/g/b | model mean | model exact | total mean | \
-         median time (ms) | spread min–max (ms) | instructions/frame |"
+         median time (ms) | IQR p25–p75 (ms) | min–max (ms) | instructions/frame |"
     );
     let _ = writeln!(
         w,
-        "| --- | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | --- | ---: |"
+        "| --- | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | --- | --- | ---: |"
     );
     for r in rows {
         let (fmax, fmean, fexact, fcov) = match &r.fixed {
@@ -626,7 +647,7 @@ fn markdown(rows: &[Row], args: &Args) -> String {
         };
         let _ = writeln!(
             w,
-            "| {} | {} | {} | {} | {} | {} | {} | {:.4} | {:.2} % | {:.4} | {} | {}–{} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.4} | {:.2} % | {:.4} | {} | {}–{} | {}–{} | {} |",
             r.config.scene,
             r.config.label(),
             fmax,
@@ -638,6 +659,8 @@ fn markdown(rows: &[Row], args: &Args) -> String {
             r.model.exact_share * 100.0,
             r.total.mean_error,
             ms(r.time.median),
+            ms(r.time.p25),
+            ms(r.time.p75),
             ms(r.time.min),
             ms(r.time.max),
             r.instructions.map_or("n/a".into(), mega),
