@@ -64,7 +64,9 @@ fn bench_scenes(c: &mut Criterion) {
                 })
             });
             group.bench_function(BenchmarkId::new("reference", mode_name(shading)), |b| {
-                b.iter(|| black_box(fixshade::reference::render(black_box(&desc)).expect("renders")))
+                b.iter(|| {
+                    black_box(fixshade::reference::render(black_box(&desc)).expect("renders"))
+                })
             });
         }
         group.finish();
