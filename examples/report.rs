@@ -585,7 +585,8 @@ fn markdown(rows: &[Row], args: &Args) -> String {
         .unwrap_or_else(|| "unknown".into());
     let _ = writeln!(
         w,
-        "- times: {} timed renders per configuration after one warm-up, one thread; \
+        "- times: {} timed renders per configuration, in interleaved rounds (one render of \
+         every configuration per round) after a warm-up round, one thread; \
          1-minute load average when the table was written: {load} (a shared machine: \
          times are noisy, instruction counts are not)",
         args.reps
