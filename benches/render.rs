@@ -58,11 +58,25 @@ fn bench_scenes(c: &mut Criterion) {
                 b.iter(|| {
                     let mut fb = Framebuffer::new(&mut pixels, w, h).expect("framebuffer");
                     let stats = scene
-                        .render(&mut fb, &mut depth, &mut cache)
+                        .render_framebuffer(&mut fb, &mut depth, &mut cache)
                         .expect("renders");
                     black_box(stats);
                 })
             });
+            // The same frame through the generic DrawTarget path (one
+            // fill_contiguous per span), to show what the fast path saves.
+            group.bench_function(
+                BenchmarkId::new("kernel-drawtarget", mode_name(shading)),
+                |b| {
+                    b.iter(|| {
+                        let mut fb = Framebuffer::new(&mut pixels, w, h).expect("framebuffer");
+                        let stats = scene
+                            .render(&mut fb, &mut depth, &mut cache)
+                            .expect("renders");
+                        black_box(stats);
+                    })
+                },
+            );
             group.bench_function(BenchmarkId::new("reference", mode_name(shading)), |b| {
                 b.iter(|| {
                     black_box(fixshade::reference::render(black_box(&desc)).expect("renders"))

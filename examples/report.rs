@@ -167,7 +167,7 @@ impl KernelBuffers {
         let mut fb =
             Framebuffer::new(&mut self.pixels, scene.width, scene.height).expect("framebuffer");
         let stats = scene
-            .render(&mut fb, &mut self.depth, &mut self.cache)
+            .render_framebuffer(&mut fb, &mut self.depth, &mut self.cache)
             .expect("standard scene renders");
         black_box(stats);
     }
@@ -595,7 +595,7 @@ fn markdown(rows: &[Row], args: &Args) -> String {
     let _ = writeln!(
         w,
         "All scenes are 320 × 240 RGB565 (see `src/standard_scenes.rs`). A kernel frame \
-         is `KernelScene::render` into a `Framebuffer`: clear colour and depth, then draw. \
+         is `KernelScene::render_framebuffer` (the framebuffer fast path): clear colour and depth, then draw. \
          A reference frame is `reference::render` (f64, SPEC.md to the letter, allocating \
          its frame).\n"
     );
