@@ -135,6 +135,13 @@ impl DrawTarget for CountingTarget {
         }
         Ok(())
     }
+
+    /// Clearing is not drawing: the pixels take the colour, no write is
+    /// counted.
+    fn clear(&mut self, c: Rgb565) -> Result<(), Infallible> {
+        self.pixels.fill(RawU16::from(c).into_inner());
+        Ok(())
+    }
 }
 
 // ---------------------------------------------------------------------------
