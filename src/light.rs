@@ -259,6 +259,11 @@ impl Attenuation {
             if !v.is_finite() {
                 return Err(LightError::NotFinite);
             }
+            // A negative value that rounds to 0 (above −2⁻³³) is still
+            // negative: an error, as for every other negative.
+            if v < 0.0 {
+                return Err(LightError::OutOfRange);
+            }
             U32F32::checked_from_num(v).ok_or(LightError::OutOfRange)
         };
         Ok(Attenuation {
