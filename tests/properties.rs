@@ -340,7 +340,7 @@ fn near_discontinuity(s: &SceneDesc) -> bool {
     };
     let near_step = |v: f64| {
         let f = (v * 16.0 + 0.5).rem_euclid(1.0);
-        f < 0.01 || f > 0.99
+        !(0.01..=0.99).contains(&f)
     };
     for t in &s.mesh.indices {
         let [a, b, d] = t.map(|i| i as usize);

@@ -170,8 +170,8 @@ fn shininess_up_to_the_largest_on_a_phong_sphere() {
                 s.specular_model = model;
                 s.viewer = viewer;
                 let e = check(&format!("shininess {n} {model:?} {viewer:?}"), &s);
-                for c in 0..3 {
-                    worst[c] = worst[c].max(e.max_error[c]);
+                for (w, m) in worst.iter_mut().zip(e.max_error) {
+                    *w = (*w).max(m);
                 }
             }
         }
@@ -703,8 +703,8 @@ fn target_4096_square() {
         let got = t.at(x, y);
         let ch = |v: u16| [(v >> 11) as i32, ((v >> 5) & 63) as i32, (v & 31) as i32];
         let (a, b) = (ch(want), ch(got));
-        for c in 0..3 {
-            worst[c] = worst[c].max((a[c] - b[c]).abs());
+        for ((w, x), y) in worst.iter_mut().zip(a).zip(b) {
+            *w = (*w).max((x - y).abs());
         }
     }
     println!("4096 × 4096: sampled max error {worst:?} LSB");
