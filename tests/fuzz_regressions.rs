@@ -76,3 +76,21 @@ fn area_light_at_the_range_limit() {
         }
     }
 }
+
+/// The committed seed corpus (`fuzz/seeds/render`, 24 inputs picked from
+/// the fuzzer's corpus across its size range) through the same check.
+#[test]
+fn seed_corpus() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fuzz/seeds/render");
+    let mut n = 0;
+    let mut drew = 0;
+    for f in std::fs::read_dir(dir).expect("fuzz/seeds/render") {
+        let data = std::fs::read(f.unwrap().path()).unwrap();
+        if run(&data).drawn > 0 {
+            drew += 1;
+        }
+        n += 1;
+    }
+    assert!(n >= 20, "{n} seeds");
+    println!("{n} seeds, {drew} drew something");
+}
