@@ -259,6 +259,11 @@ impl Attenuation {
             if !v.is_finite() {
                 return Err(LightError::NotFinite);
             }
+            // A negative value that rounds to 0 (above −2⁻³³) is still
+            // negative: an error, as for every other negative.
+            if v < 0.0 {
+                return Err(LightError::OutOfRange);
+            }
             U32F32::checked_from_num(v).ok_or(LightError::OutOfRange)
         };
         Ok(Attenuation {
@@ -833,7 +838,15 @@ impl<A: Falloff> LightSet for AreaLight<A> {
         // Cell centre (i, j): c + ((i + ½)/k − ½)·u + ((j + ½)/k − ½)·v
         //                   = c + (1 − k)/(2k)·(u + v) + i·u/k + j·v/k.
         let div = |x: i64, d: i64| (x + x.signum() * d / 2) / d;
-        let first = [0, 1, 2].map(|i| c[i] + div((1 - k) * (u[i] + v[i]), 2 * k));
+        // |c|, |u|, |v| ≤ 2^62: (1 − k)(u + v) needs i128 (up to 63·2^63);
+        // the first sample is clamped to the WidePoint range like every
+        // light position.
+        let first = [0, 1, 2].map(|i| {
+            let d = 2 * k as i128;
+            let x = (1 - k as i128) * (u[i] as i128 + v[i] as i128);
+            let off = (x + x.signum() * d / 2) / d;
+            (c[i] as i128 + off).clamp(-(WIDE_LIMIT as i128), WIDE_LIMIT as i128) as i64
+        });
         let k2 = (k * k) as u32;
         PreparedArea {
             first,
@@ -857,6 +870,15 @@ impl<A: Falloff> AreaLight<A> {
     }
 }
 
+/// The next sample coordinate of an area light, clamped to the
+/// [`WidePoint`] range (`|x|, |step| ≤ 2⁶²`, so the saturating sum cannot
+/// wrap). Samples of a light inside the range are exact; one reaching past
+/// it is clamped, as light positions are.
+#[inline(always)]
+fn step_wide(x: i64, step: i64) -> i64 {
+    x.saturating_add(step).clamp(-WIDE_LIMIT, WIDE_LIMIT)
+}
+
 impl<A: Falloff> PreparedLights for PreparedArea<A> {
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         let no_cone = SpotCone {
@@ -871,9 +893,9 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
                 if let Some((l, sf)) = point_factor::<A, false>(ctx, &pos, &self.att, &no_cone) {
                     add_light::<S>(ctx, l, sf, &self.gains, acc);
                 }
-                pos = [0, 1, 2].map(|i| pos[i] + self.step_v[i]);
+                pos = [0, 1, 2].map(|i| step_wide(pos[i], self.step_v[i]));
             }
-            row = [0, 1, 2].map(|i| row[i] + self.step_u[i]);
+            row = [0, 1, 2].map(|i| step_wide(row[i], self.step_u[i]));
         }
     }
 }
