@@ -565,7 +565,8 @@ pub struct Report {
 }
 
 /// The error the renderer must give, by the documented order of checks
-/// (`Renderer::draw`: mesh, cache, target size, depth, camera).
+/// (`Renderer::draw`: mesh, cache, target size, depth, then, for a target
+/// that is not empty, camera; an empty target draws nothing).
 pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     let mesh = Mesh {
         positions: &s.positions,
@@ -597,6 +598,9 @@ pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     }
     if s.depth && s.depth_short > 0 && s.width > 0 && s.height > 0 {
         return Some(RenderError::DepthTooSmall);
+    }
+    if s.width == 0 || s.height == 0 {
+        return None;
     }
     if let Err(e) = s.camera.projection_for(s.width, s.height) {
         return Some(RenderError::Camera(e));
