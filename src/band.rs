@@ -67,7 +67,7 @@ use crate::vector::{Unit3, Vec3};
 /// How many runs of consecutive triangles a frame is split into for
 /// finding each band's triangles (a table of `CHUNKS × 8` bytes on the
 /// stack).
-pub const CHUNKS: usize = 64;
+pub const CHUNKS: usize = 128;
 
 const B_INSIDE: u64 = 1 << 51;
 const B_FRONT: u64 = 1 << 52;
@@ -115,6 +115,7 @@ fn pack(s: Shade) -> u64 {
     b[0] as u64 | (b[1] as u64) << 17 | (b[2] as u64) << 34
 }
 
+#[inline(always)]
 fn unpack(v: u64) -> Shade {
     let m = (1u64 << 17) - 1;
     Shade::from_bits(
@@ -286,7 +287,7 @@ impl Corners for BandCorners<'_> {
     ) -> [i64; 4] {
         f.proj.clip(f.eye(self.idx[k]))
     }
-    #[inline]
+    #[inline(always)]
     fn shade<S: Specular, V: Viewer, L: LightSet>(
         &mut self,
         f: &Frame<'_, '_, S, V, L>,
@@ -295,23 +296,12 @@ impl Corners for BandCorners<'_> {
         stats: &mut DrawStats,
     ) -> Shade {
         let i = self.idx[k];
-        let v = &mut self.cache[i];
-        let bits = v.bits();
+        let bits = self.cache[i].bits();
         let want = if back { B_BACK } else { B_FRONT };
         if bits & want != 0 {
             return unpack(bits);
         }
-        let n = f.eye_normal(i);
-        let s =
-            f.r.lighting()
-                .shade(f.eye(i), if back { n.neg() } else { n });
-        stats.lit += 1;
-        // One colour is kept: the first facing asked for (the other one, of
-        // two-sided silhouette vertices only, is lit each time).
-        if bits & (B_FRONT | B_BACK) == 0 {
-            v.set_bits((bits & !COLOUR_MASK) | pack(s) | want);
-        }
-        s
+        light_band_vertex(f, &mut self.cache[i], i, want, stats)
     }
     fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
         &mut self,
@@ -323,6 +313,31 @@ impl Corners for BandCorners<'_> {
         let n = if normal { f.eye_normal(i) } else { Unit3::ZERO };
         (f.eye(i), n)
     }
+}
+
+/// Lights `v` (mesh vertex `i`) for the facing `want` (`B_FRONT` or
+/// `B_BACK`), keeping the colour if the vertex has none yet.
+#[inline(never)]
+fn light_band_vertex<S: Specular, V: Viewer, L: LightSet>(
+    f: &Frame<'_, '_, S, V, L>,
+    v: &mut BandVertex,
+    i: usize,
+    want: u64,
+    stats: &mut DrawStats,
+) -> Shade {
+    let bits = v.bits();
+    let n = f.eye_normal(i);
+    let back = want == B_BACK;
+    let s =
+        f.r.lighting()
+            .shade(f.eye(i), if back { n.neg() } else { n });
+    stats.lit += 1;
+    // One colour is kept: the first facing asked for (the other one, of
+    // two-sided silhouette vertices only, is lit each time).
+    if bits & (B_FRONT | B_BACK) == 0 {
+        v.set_bits((bits & !COLOUR_MASK) | pack(s) | want);
+    }
+    s
 }
 
 /// Rows per band actually used (at most the viewport's height) and the

@@ -893,7 +893,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// One span through the depth test into the sink.
-    #[inline]
+    #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
         s: &Span<N>,

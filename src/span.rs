@@ -135,14 +135,19 @@ impl PixelSink for BandSink<'_> {
     type Error = core::convert::Infallible;
     #[inline(always)]
     fn row(&mut self, y: i32, x0: i32, n: usize) -> Option<&mut [u16]> {
-        let r = y.wrapping_sub(self.y0) as u32 as usize;
-        if x0 < 0 || x0 as usize + n > self.width as usize {
+        // Below 2^32 · 2^32 + 2^32 + 2^64: no overflow in u128; in
+        // practice rows, width and n are far smaller.
+        let r = y.wrapping_sub(self.y0) as u32 as u64;
+        let (x0, w) = (x0 as u32 as u64, self.width as u64);
+        let end = x0 + n as u64;
+        if end > w {
             return None;
         }
-        let start = r
-            .checked_mul(self.width as usize)?
-            .checked_add(x0 as usize)?;
-        self.buf.get_mut(start..start.checked_add(n)?)
+        let start = r * w + x0;
+        if start + (n as u64) > self.buf.len() as u64 {
+            return None;
+        }
+        self.buf.get_mut(start as usize..start as usize + n)
     }
     fn fill(
         &mut self,
