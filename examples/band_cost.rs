@@ -129,6 +129,7 @@ impl Run {
 /// S1 and S4 as firmware would build them: concrete light types (no
 /// 64-light run-time set as in `KernelScene`), so that the stack measured
 /// is the kernel's.
+#[allow(clippy::too_many_arguments)]
 fn firmware_frame(
     d: &SceneDesc,
     mesh: &Mesh,

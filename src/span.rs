@@ -135,12 +135,11 @@ impl PixelSink for BandSink<'_> {
     type Error = core::convert::Infallible;
     #[inline(always)]
     fn row(&mut self, y: i32, x0: i32, n: usize) -> Option<&mut [u16]> {
-        // Below 2^32 · 2^32 + 2^32 + 2^64: no overflow in u128; in
-        // practice rows, width and n are far smaller.
+        // Row and column below 2^32, n at most the width: u64 does not
+        // overflow (a negative row or column wraps to one past the band).
         let r = y.wrapping_sub(self.y0) as u32 as u64;
         let (x0, w) = (x0 as u32 as u64, self.width as u64);
-        let end = x0 + n as u64;
-        if end > w {
+        if x0.saturating_add(n as u64) > w {
             return None;
         }
         let start = r * w + x0;
