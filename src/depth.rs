@@ -100,3 +100,75 @@ impl DepthTest for DepthBuffer<'_> {
         &mut self.buf[start..start + len]
     }
 }
+
+/// A depth band: the depths of `rows` rows of a `width`-pixel-wide
+/// viewport starting at row `y0`, in storage the caller provides (at least
+/// `width × rows` values). The band renderer
+/// ([`Renderer::draw_bands`](crate::render::Renderer::draw_bands)) moves it
+/// down the frame and clears it for each band.
+///
+/// ```
+/// use fixshade::depth::{DepthBand, DepthTest};
+/// let mut storage = [0u16; 4 * 2];
+/// let mut band = DepthBand::new(&mut storage);
+/// assert!(band.start(4, 6, 2)); // rows 6 and 7 of a 4-pixel-wide frame
+/// assert_eq!(band.row(7, 1, 3), &[u16::MAX; 3]);
+/// assert!(band.row(5, 0, 1).is_empty()); // outside the band
+/// assert!(!band.start(4, 0, 3)); // 12 values do not fit in 8
+/// ```
+#[derive(Debug, PartialEq, Eq)]
+pub struct DepthBand<'a> {
+    buf: &'a mut [u16],
+    width: u32,
+    y0: u32,
+    rows: u32,
+}
+
+impl<'a> DepthBand<'a> {
+    /// Wraps `buf` (any length; [`DepthBand::start`] checks it).
+    pub fn new(buf: &'a mut [u16]) -> Self {
+        DepthBand {
+            buf,
+            width: 0,
+            y0: 0,
+            rows: 0,
+        }
+    }
+
+    /// Makes this the band of rows `y0 .. y0 + rows` of a `width`-wide
+    /// viewport and clears it to the far value. `false` (and an empty band)
+    /// if the storage is shorter than `width × rows`.
+    pub fn start(&mut self, width: u32, y0: u32, rows: u32) -> bool {
+        let need = width as u64 * rows as u64;
+        if (self.buf.len() as u64) < need {
+            self.rows = 0;
+            return false;
+        }
+        self.buf[..need as usize].fill(u16::MAX);
+        self.width = width;
+        self.y0 = y0;
+        self.rows = rows;
+        true
+    }
+
+    /// The storage's length in values.
+    pub fn capacity(&self) -> usize {
+        self.buf.len()
+    }
+}
+
+impl DepthTest for DepthBand<'_> {
+    const ENABLED: bool = true;
+    /// Rows outside the band, and columns outside the viewport, give the
+    /// part that exists (possibly empty).
+    #[inline]
+    fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16] {
+        let r = y.wrapping_sub(self.y0);
+        if r >= self.rows || x0 >= self.width {
+            return &mut [];
+        }
+        let start = r as usize * self.width as usize + x0 as usize;
+        let len = len.min(self.width - x0) as usize;
+        &mut self.buf[start..start + len]
+    }
+}

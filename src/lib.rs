@@ -2,6 +2,7 @@
 #![cfg_attr(not(feature = "std"), no_std)]
 #![warn(missing_docs)]
 
+pub mod band;
 pub mod camera;
 pub mod color;
 pub mod depth;

@@ -253,7 +253,7 @@ pub struct Triangle<const N: usize> {
     x_hi: i64,
     y_lo: i64,
     y_hi: i64,
-    /// Attribute values at pixel (x_lo, y_lo).
+    /// Attribute values at pixel (x_lo, y_lo) (`y_lo` the first drawn row).
     origin: [i64; N],
     /// Per-pixel gradients along x.
     ddx: [i64; N],
@@ -313,8 +313,48 @@ impl<const N: usize> Triangle<N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
     /// area, is a back face and `cull` is set, or cannot touch `clip`.
     /// A back face that is kept is reoriented (its `facing` says so).
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+    /// let v = [(8, 8), (200, 8), (8, 200)].map(|(x, y)| RasterVertex { x, y, attr: [0i64] });
+    /// let clip = ClipRect::of_size(16, 16).unwrap();
+    /// // Counter-clockwise on screen (y down) is a back face: culled.
+    /// assert!(Triangle::setup(&v, clip, true).is_none());
+    /// assert!(Triangle::setup(&[v[0], v[2], v[1]], clip, true).is_some());
+    /// ```
     #[inline(always)]
     pub fn setup(v: &[RasterVertex<N>; 3], clip: ClipRect, cull: bool) -> Option<Triangle<N>> {
+        Self::setup_rows(v, clip, (clip.y0, clip.y1), cull)
+    }
+
+    /// As [`Triangle::setup`] for the rows `rows.0 ..= rows.1` of the
+    /// viewport `viewport` only (a band). The attribute planes are anchored
+    /// as for the whole viewport and the edges and rows start exactly where
+    /// the whole-viewport walk would be at the band's first row, so every
+    /// span is bit for bit the span the whole viewport gives on that row.
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+    /// let v = [(8, 8), (8, 300), (250, 8)].map(|(x, y)| RasterVertex { x, y, attr: [x * y] });
+    /// let vp = ClipRect::of_size(16, 16).unwrap();
+    /// let mut whole = Vec::new();
+    /// Triangle::setup(&v, vp, true).unwrap().for_each_span(|s| whole.push((s.y, s.x0, s.x1, s.start)));
+    /// let mut banded = Vec::new();
+    /// for y0 in (0..16).step_by(3) {
+    ///     if let Some(t) = Triangle::setup_rows(&v, vp, (y0, (y0 + 2).min(15)), true) {
+    ///         t.for_each_span(|s| banded.push((s.y, s.x0, s.x1, s.start)));
+    ///     }
+    /// }
+    /// assert_eq!(whole, banded);
+    /// ```
+    #[inline(always)]
+    pub fn setup_rows(
+        v: &[RasterVertex<N>; 3],
+        viewport: ClipRect,
+        rows: (i32, i32),
+        cull: bool,
+    ) -> Option<Triangle<N>> {
+        let clip = viewport;
         let a = area2(v);
         if a == 0 {
             return None;
@@ -340,10 +380,15 @@ impl<const N: usize> Triangle<N> {
         let x_hi = ((maxx - 8) >> 4).min(clip.x1 as i64);
         let y_lo = ((miny + 7) >> 4).max(clip.y0 as i64);
         let y_hi = ((maxy - 8) >> 4).min(clip.y1 as i64);
-        if x_lo > x_hi || y_lo > y_hi {
+        // The rows drawn: the band's part of the viewport's rows.
+        let (r_lo, r_hi) = (y_lo.max(rows.0 as i64), y_hi.min(rows.1 as i64));
+        if x_lo > x_hi || r_lo > r_hi {
             return None;
         }
-        let ys0 = 16 * y_lo + 8;
+        // The edges start at the first drawn row: the DDA's quotient and
+        // remainder there are those the walk from `y_lo` reaches (both are
+        // the exact floor of the same numerator).
+        let ys0 = 16 * r_lo + 8;
         let edges = [
             Edge::new((v[0].x, v[0].y), (v[1].x, v[1].y), ys0),
             Edge::new((v[1].x, v[1].y), (v[2].x, v[2].y), ys0),
@@ -390,12 +435,22 @@ impl<const N: usize> Triangle<N> {
                 plane_at(&v, r, i, e20, e01)
             };
         }
+        // The planes are anchored at the viewport's corner (x_lo, y_lo), so
+        // that rounding does not depend on the band; the first drawn row's
+        // values are the origin plus k row steps, exactly (integers; the
+        // wrapping product equals k wrapping additions).
+        let k = r_lo - y_lo;
+        if k != 0 && !exact {
+            for (o, d) in origin.iter_mut().zip(&ddy) {
+                *o = o.wrapping_add(d.wrapping_mul(k));
+            }
+        }
         Some(Triangle {
             edges,
             x_lo,
             x_hi,
-            y_lo,
-            y_hi,
+            y_lo: r_lo,
+            y_hi: r_hi,
             origin,
             ddx,
             ddy,
@@ -456,6 +511,14 @@ impl<const N: usize> Triangle<N> {
 /// top to bottom; returns how it faced, or `None` if it drew nothing
 /// (no area, culled, or no pixel centre inside). Set-up and span walk are
 /// one inlined step: the set-up triangle never leaves the stack frame.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
+/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let mut pixels = 0;
+/// rasterize(&v, ClipRect::of_size(16, 16).unwrap(), true, |s| pixels += s.x1 - s.x0 + 1);
+/// assert!(pixels > 50);
+/// ```
 #[inline(always)]
 pub fn rasterize<const N: usize>(
     v: &[RasterVertex<N>; 3],
@@ -463,7 +526,29 @@ pub fn rasterize<const N: usize>(
     cull: bool,
     f: impl FnMut(&Span<N>),
 ) -> Option<Facing> {
-    let t = Triangle::setup(v, clip, cull)?;
+    rasterize_rows(v, clip, (clip.y0, clip.y1), cull, f)
+}
+
+/// As [`rasterize`], drawing only rows `rows.0 ..= rows.1` of `viewport`
+/// (a band), with exactly the spans the whole viewport gives on those rows
+/// (see [`Triangle::setup_rows`]).
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize_rows, ClipRect, RasterVertex};
+/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let mut rows = Vec::new();
+/// rasterize_rows(&v, ClipRect::of_size(16, 16).unwrap(), (4, 5), true, |s| rows.push(s.y));
+/// assert_eq!(rows, [4, 5]);
+/// ```
+#[inline(always)]
+pub fn rasterize_rows<const N: usize>(
+    v: &[RasterVertex<N>; 3],
+    viewport: ClipRect,
+    rows: (i32, i32),
+    cull: bool,
+    f: impl FnMut(&Span<N>),
+) -> Option<Facing> {
+    let t = Triangle::setup_rows(v, viewport, rows, cull)?;
     t.for_each_span(f);
     Some(t.facing)
 }

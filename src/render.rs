@@ -38,7 +38,7 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{area2, rasterize, ClipRect, RasterVertex, Span, COORD_LIMIT};
+use crate::rasterizer::{area2, rasterize_rows, ClipRect, RasterVertex, Span, COORD_LIMIT};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PhongPixels, PixelSink,
     SpanShader, TargetSink,
@@ -120,8 +120,12 @@ pub enum RenderError<E> {
     Camera(CameraError),
     /// The vertex cache is shorter than the mesh's vertex count.
     CacheTooSmall,
-    /// The depth buffer is smaller than the target.
+    /// The depth buffer is smaller than the target (or, for
+    /// [`Renderer::draw_bands`], than the band).
     DepthTooSmall,
+    /// The band renderer's colour band holds fewer than `width × h`
+    /// pixels, or its height `h` is 0.
+    BandTooSmall,
     /// The target is wider or taller than 2²⁰ pixels.
     TargetTooLarge,
     /// The target reported an error.
@@ -135,6 +139,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
             RenderError::Camera(e) => write!(f, "camera: {e}"),
             RenderError::CacheTooSmall => f.write_str("vertex cache shorter than the vertex count"),
             RenderError::DepthTooSmall => f.write_str("depth buffer smaller than the target"),
+            RenderError::BandTooSmall => f.write_str("colour band smaller than width x height"),
             RenderError::TargetTooLarge => f.write_str("target larger than 2^20 pixels a side"),
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }
@@ -159,6 +164,7 @@ pub struct DrawStats {
 const F_PROJECTED: u8 = 1;
 const F_FRONT: u8 = 2;
 const F_BACK: u8 = 4;
+const F_NORMAL: u8 = 8;
 
 /// One vertex's per-frame data, in a cache the caller provides (one per
 /// mesh vertex): 104 bytes (`i64` fields are 8-aligned on Cortex-M too).
@@ -244,6 +250,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         &self.lighting
     }
 
+    /// The render switches.
+    pub fn options(&self) -> RenderOptions {
+        self.options
+    }
+
     /// Draws `mesh` into `target` with shading mode `M` and depth test `D`.
     ///
     /// `cache` needs one [`CachedVertex`] per mesh vertex. The target's
@@ -306,9 +317,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             return Err(RenderError::CacheTooSmall);
         }
         let (w, h) = (size.width, size.height);
-        if w > MAX_TARGET_SIDE || h > MAX_TARGET_SIDE {
-            return Err(RenderError::TargetTooLarge);
-        }
+        check_size(size)?;
         if D::ENABLED
             && depth
                 .row(h.saturating_sub(1), w.saturating_sub(1), 1)
@@ -323,43 +332,161 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             ..DrawStats::default()
         };
         // An empty target draws nothing (and has no aspect ratio).
-        let Some(clip) = ClipRect::of_size(w, h) else {
+        let Some(frame) = self.frame(mesh, size)? else {
             return Ok(stats);
         };
-        let proj = self
-            .camera
-            .projection_for(w, h)
-            .map_err(RenderError::Camera)?;
         for c in cache[..n].iter_mut() {
             c.flags = 0;
         }
-        let frame = Frame {
-            r: self,
-            mesh,
-            proj,
-            w: w as i64,
-            h: h as i64,
-            clip,
-        };
         for tri in mesh.indices {
             let idx = tri.map(|i| i as usize);
             for &i in &idx {
                 frame.project(&mut cache[i], i);
             }
-            frame.triangle::<M, P, D>(idx, cache, sink, depth, &mut stats)?;
+            let mut corners = CacheCorners {
+                cache,
+                slot: idx,
+                vertex: idx,
+            };
+            frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
         }
         Ok(stats)
+    }
+
+    /// The per-draw constants for a viewport of `size` at the origin,
+    /// drawing all its rows; `None` for an empty viewport.
+    pub(crate) fn frame<'a, 'm, E>(
+        &'a self,
+        mesh: &'a Mesh<'m>,
+        size: Size,
+    ) -> Result<Option<Frame<'a, 'm, S, V, L>>, RenderError<E>> {
+        let (w, h) = (size.width, size.height);
+        let Some(viewport) = ClipRect::of_size(w, h) else {
+            return Ok(None);
+        };
+        let proj = self
+            .camera
+            .projection_for(w, h)
+            .map_err(RenderError::Camera)?;
+        Ok(Some(Frame {
+            r: self,
+            mesh,
+            proj,
+            w: w as i64,
+            h: h as i64,
+            viewport,
+            rows: (viewport.y0, viewport.y1),
+        }))
+    }
+}
+
+/// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
+pub(crate) fn check_size<E>(size: Size) -> Result<(), RenderError<E>> {
+    if size.width > MAX_TARGET_SIDE || size.height > MAX_TARGET_SIDE {
+        return Err(RenderError::TargetTooLarge);
+    }
+    Ok(())
+}
+
+/// Where a triangle's three corners come from: their clip-space and window
+/// positions, their colours and (for flat and Phong shading) their eye
+/// positions and normals. The whole-frame renderer reads a
+/// [`CachedVertex`] cache; the band renderer a compact cache or a
+/// per-triangle one.
+pub(crate) trait Corners {
+    /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
+    fn inside(&self, k: usize) -> bool;
+    /// Window position and depth of corner `k` (in front of the near plane).
+    fn win(&self, k: usize) -> [i64; 3];
+    /// Clip-space position of corner `k` (asked only when the triangle
+    /// crosses the near plane).
+    fn clip<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+    ) -> [i64; 4];
+    /// The lit colour of corner `k`, for its back (negated normal) if `back`.
+    fn shade<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        back: bool,
+        stats: &mut DrawStats,
+    ) -> Shade;
+    /// Eye-space position and normal of corner `k`.
+    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        normal: bool,
+    ) -> (Vec3, Unit3);
+}
+
+/// Corners from a [`CachedVertex`] cache: corner `k` is `cache[slot[k]]`,
+/// mesh vertex `vertex[k]`, already projected.
+pub(crate) struct CacheCorners<'c> {
+    pub(crate) cache: &'c mut [CachedVertex],
+    pub(crate) slot: [usize; 3],
+    pub(crate) vertex: [usize; 3],
+}
+
+impl Corners for CacheCorners<'_> {
+    #[inline(always)]
+    fn inside(&self, k: usize) -> bool {
+        let c = &self.cache[self.slot[k]];
+        c.clip[2] + c.clip[3] >= 0
+    }
+    #[inline(always)]
+    fn win(&self, k: usize) -> [i64; 3] {
+        self.cache[self.slot[k]].win
+    }
+    #[inline(always)]
+    fn clip<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        _: &Frame<'_, '_, S, V, L>,
+        k: usize,
+    ) -> [i64; 4] {
+        self.cache[self.slot[k]].clip
+    }
+    #[inline(always)]
+    fn shade<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        back: bool,
+        stats: &mut DrawStats,
+    ) -> Shade {
+        f.light(&mut self.cache[self.slot[k]], self.vertex[k], back, stats)
+    }
+    #[inline(always)]
+    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        normal: bool,
+    ) -> (Vec3, Unit3) {
+        let c = &mut self.cache[self.slot[k]];
+        let n = if normal {
+            f.normal(c, self.vertex[k])
+        } else {
+            Unit3::ZERO
+        };
+        (c.eye, n)
     }
 }
 
 /// Per-draw constants.
-struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
-    r: &'a Renderer<S, V, L>,
-    mesh: &'a Mesh<'m>,
-    proj: ProjectionCoeffs,
+pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
+    pub(crate) r: &'a Renderer<S, V, L>,
+    pub(crate) mesh: &'a Mesh<'m>,
+    pub(crate) proj: ProjectionCoeffs,
     w: i64,
     h: i64,
-    clip: ClipRect,
+    /// The viewport: projection, window mapping and the attribute planes'
+    /// anchor.
+    pub(crate) viewport: ClipRect,
+    /// The rows drawn (all of the viewport's, or a band's).
+    pub(crate) rows: (i32, i32),
 }
 
 /// Where a vertex of a near-clipped polygon comes from: an original vertex,
@@ -417,20 +544,43 @@ fn centroid(e: [Vec3; 3]) -> Vec3 {
 }
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Transforms and projects vertex `i` unless already done this frame.
+    /// Transforms and projects vertex `i` unless already done this frame
+    /// (its normal is transformed when first needed).
     #[inline]
-    fn project(&self, c: &mut CachedVertex, i: usize) {
+    pub(crate) fn project(&self, c: &mut CachedVertex, i: usize) {
         if c.flags & F_PROJECTED != 0 {
             return;
         }
-        c.eye = self.r.modelview.transform_point(self.mesh.positions[i]);
-        c.normal = match self.mesh.normals {
-            Some(ns) => self.normal_to_eye(ns[i]),
-            None => Unit3::ZERO,
-        };
+        c.eye = self.eye(i);
         c.clip = self.proj.clip(c.eye);
         c.win = self.window(&c.clip);
         c.flags = F_PROJECTED;
+    }
+
+    /// Eye-space position of mesh vertex `i`.
+    #[inline]
+    pub(crate) fn eye(&self, i: usize) -> Vec3 {
+        self.r.modelview.transform_point(self.mesh.positions[i])
+    }
+
+    /// Eye-space normal of mesh vertex `i`.
+    #[inline]
+    pub(crate) fn eye_normal(&self, i: usize) -> Unit3 {
+        match self.mesh.normals {
+            Some(ns) => self.normal_to_eye(ns[i]),
+            None => Unit3::ZERO,
+        }
+    }
+
+    /// The eye-space normal of cached vertex `c` (mesh vertex `i`),
+    /// transformed unless already done this frame.
+    #[inline]
+    fn normal(&self, c: &mut CachedVertex, i: usize) -> Unit3 {
+        if c.flags & F_NORMAL == 0 {
+            c.normal = self.eye_normal(i);
+            c.flags |= F_NORMAL;
+        }
+        c.normal
     }
 
     /// `N_eye = normalise(M_n · N)`: 16 × 16-bit products, sums below 2³¹.
@@ -453,7 +603,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
     /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `2·x_c·8W < 2⁶³`.
     #[inline]
-    fn window(&self, c: &[i64; 4]) -> [i64; 3] {
+    pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
         let w = c[3];
         if w <= 0 {
             return [0, 0, 0];
@@ -470,19 +620,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         ]
     }
 
-    /// Lights vertex `c` for the given facing unless already done.
+    /// Lights cached vertex `c` (mesh vertex `i`) for the given facing
+    /// unless already done.
     #[inline]
-    fn light(&self, c: &mut CachedVertex, back: bool, stats: &mut DrawStats) -> Shade {
+    fn light(&self, c: &mut CachedVertex, i: usize, back: bool, stats: &mut DrawStats) -> Shade {
         if back {
             if c.flags & F_BACK == 0 {
-                c.back = self.r.lighting.shade(c.eye, c.normal.neg());
+                c.back = self.r.lighting.shade(c.eye, self.normal(c, i).neg());
                 c.flags |= F_BACK;
                 stats.lit += 1;
             }
             c.back
         } else {
             if c.flags & F_FRONT == 0 {
-                c.front = self.r.lighting.shade(c.eye, c.normal);
+                c.front = self.r.lighting.shade(c.eye, self.normal(c, i));
                 c.flags |= F_FRONT;
                 stats.lit += 1;
             }
@@ -490,27 +641,31 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
     }
 
-    fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest>(
+    /// Clips, culls, lights and rasterizes one triangle (its rows in
+    /// `self.rows`).
+    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners>(
         &self,
-        idx: [usize; 3],
-        cache: &mut [CachedVertex],
+        c: &mut C,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), RenderError<P::Error>> {
-        let d = idx.map(|i| cache[i].clip[2] + cache[i].clip[3]);
-        let inside = d.map(|d| d >= 0);
+        let inside = [c.inside(0), c.inside(1), c.inside(2)];
         if !inside.iter().any(|&i| i) {
             return Ok(());
         }
         // The polygon after near clipping (Sutherland–Hodgman, one plane).
         let mut poly = [PolyVert::Orig(0); 4];
+        let mut win = [[0i64; 3]; 4];
         let mut count = 0;
         if inside.iter().all(|&i| i) {
             poly[..3].copy_from_slice(&[PolyVert::Orig(0), PolyVert::Orig(1), PolyVert::Orig(2)]);
+            win[..3].copy_from_slice(&[c.win(0), c.win(1), c.win(2)]);
             count = 3;
         } else {
             stats.clipped += 1;
+            let clip = [c.clip(self, 0), c.clip(self, 1), c.clip(self, 2)];
+            let d = clip.map(|c| c[2] + c[3]);
             for a in 0..3 {
                 let b = (a + 1) % 3;
                 if inside[a] {
@@ -528,15 +683,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     count += 1;
                 }
             }
-        }
-        let mut win = [[0i64; 3]; 4];
-        for (k, p) in poly[..count].iter().enumerate() {
-            win[k] = match *p {
-                PolyVert::Orig(i) => cache[idx[i]].win,
-                PolyVert::Cut { a, b, num, den } => {
-                    self.window(&cut(&cache[idx[a]].clip, &cache[idx[b]].clip, num, den))
-                }
-            };
+            for (k, p) in poly[..count].iter().enumerate() {
+                win[k] = match *p {
+                    PolyVert::Orig(i) => c.win(i),
+                    PolyVert::Cut { a, b, num, den } => {
+                        self.window(&cut(&clip[a], &clip[b], num, den))
+                    }
+                };
+            }
         }
         // Facing is shared by every piece: decide it (and cull) once, from
         // the first piece with area.
@@ -560,7 +714,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let poly = &poly[..count];
         match M::KIND {
             ShadingKind::Flat => {
-                let e = idx.map(|i| cache[i].eye);
+                let e = [0, 1, 2].map(|k| c.eye_normal(self, k, false).0);
                 let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
                 let n = if lit_back { n.neg() } else { n };
                 let colour = self.r.lighting.shade(centroid(e), n);
@@ -572,7 +726,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 })
             }
             ShadingKind::Gouraud => {
-                let cols = [0, 1, 2].map(|k| self.light(&mut cache[idx[k]], lit_back, stats));
+                let cols = [0, 1, 2].map(|k| c.shade(self, k, lit_back, stats));
                 let verts = raster_verts::<4>(poly, &win, |i| {
                     let b = cols[i].to_bits();
                     // Scaled so that the 5/6-bit channel is `v >> 16`,
@@ -589,10 +743,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 })
             }
             ShadingKind::Phong => {
+                let en = [0, 1, 2].map(|k| c.eye_normal(self, k, true));
                 let verts = raster_verts::<7>(poly, &win, |i| {
-                    let c = &cache[idx[i]];
-                    let n = if lit_back { c.normal.neg() } else { c.normal }.to_bits();
-                    let e = c.eye.to_bits();
+                    let (e, n) = en[i];
+                    let n = if lit_back { n.neg() } else { n }.to_bits();
+                    let e = e.to_bits();
                     // Normals get 12 more fractional bits (Q.26, below 2^27).
                     [
                         0,
@@ -624,15 +779,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             miny = miny.min(v[1]);
             maxy = maxy.max(v[1]);
         }
-        let c = self.clip;
+        let c = self.viewport;
+        let (y0, y1) = (c.y0.max(self.rows.0), c.y1.min(self.rows.1));
         // ⌈(m − 8)/16⌉ = (m + 7) >> 4, ⌊(m − 8)/16⌋ = (m − 8) >> 4 (arithmetic).
         let (x_lo, x_hi) = (
             ((minx + 7) >> 4).max(c.x0 as i64),
             ((maxx - 8) >> 4).min(c.x1 as i64),
         );
         let (y_lo, y_hi) = (
-            ((miny + 7) >> 4).max(c.y0 as i64),
-            ((maxy - 8) >> 4).min(c.y1 as i64),
+            ((miny + 7) >> 4).max(y0 as i64),
+            ((maxy - 8) >> 4).min(y1 as i64),
         );
         x_lo <= x_hi && y_lo <= y_hi
     }
@@ -651,7 +807,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             let tri = [verts[0], verts[k], verts[k + 1]];
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
-            let drawn = rasterize(&tri, self.clip, false, |s| {
+            let drawn = rasterize_rows(&tri, self.viewport, self.rows, false, |s| {
                 if res.is_ok() {
                     res = span(s, stats);
                 }
@@ -737,7 +893,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// One span through the depth test into the sink.
-    #[inline]
+    #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
         s: &Span<N>,

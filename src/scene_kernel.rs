@@ -18,9 +18,10 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
+use crate::band::{BandVertex, Bands, Cached, Recomputed};
 use crate::camera::{Camera, CameraError, Projection};
 use crate::color::{Rgb, Shade};
-use crate::depth::{DepthBuffer, DepthTest, NoDepth};
+use crate::depth::{DepthBand, DepthBuffer, DepthTest, NoDepth};
 use crate::framebuffer::Framebuffer;
 use crate::illumination::{InfiniteViewer, LocalViewer, Viewer};
 use crate::light::LightSet;
@@ -284,22 +285,39 @@ impl KernelScene {
         );
         let mesh = self.mesh();
         use scene_desc::Shading as Sh;
-        if self.desc.depth {
-            let mut db = DepthBuffer::new(depth, size.width, size.height)
-                .map_err(|_| RenderError::DepthTooSmall)?;
-            db.clear();
-            match self.desc.shading {
-                Sh::Flat => out.draw::<Flat, _, _, _, _>(&r, &mesh, &mut db, cache),
-                Sh::Gouraud => out.draw::<Gouraud, _, _, _, _>(&r, &mesh, &mut db, cache),
-                Sh::Phong => out.draw::<PhongShading, _, _, _, _>(&r, &mesh, &mut db, cache),
-            }
-        } else {
-            match self.desc.shading {
-                Sh::Flat => out.draw::<Flat, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
-                Sh::Gouraud => out.draw::<Gouraud, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
-                Sh::Phong => out.draw::<PhongShading, _, _, _, _>(&r, &mesh, &mut NoDepth, cache),
-            }
+        let z = self.desc.depth;
+        match self.desc.shading {
+            Sh::Flat => out.draw_scene::<Flat, _, _, _>(&r, &mesh, size, depth, z, cache),
+            Sh::Gouraud => out.draw_scene::<Gouraud, _, _, _>(&r, &mesh, size, depth, z, cache),
+            Sh::Phong => out.draw_scene::<PhongShading, _, _, _>(&r, &mesh, size, depth, z, cache),
         }
+    }
+
+    /// Renders into `target` band by band with
+    /// [`Renderer::draw_bands`]: bands of `band_height` rows through
+    /// `colour` (at least `width × band_height` pixels) and, if the scene
+    /// has a depth test, `depth` (as many values). `vertices`: `Some` cache
+    /// of one [`BandVertex`] per vertex ([`Cached`] mode), or `None`
+    /// ([`Recomputed`]). The pixels are those of [`KernelScene::render`].
+    pub fn render_bands<T: DrawTarget<Color = Rgb565>>(
+        &self,
+        target: &mut T,
+        band_height: u32,
+        colour: &mut [u16],
+        depth: &mut [u16],
+        vertices: Option<&mut [BandVertex]>,
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        let size = target.bounding_box().size;
+        let mut out = BandDrawer {
+            target,
+            bands: Bands {
+                colour,
+                height: band_height,
+                background: self.background,
+            },
+            vertices,
+        };
+        self.dispatch(&mut out, size, depth, &mut [])
     }
 
     /// Renders into fresh buffers and records which pixels were drawn.
@@ -472,6 +490,70 @@ trait Drawer {
         depth: &mut D,
         cache: &mut [CachedVertex],
     ) -> Result<DrawStats, RenderError<Self::Error>>;
+
+    /// Draws with a cleared depth buffer over `depth` if `has_depth`.
+    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        size: Size,
+        depth: &mut [u16],
+        has_depth: bool,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>> {
+        if has_depth {
+            let mut db = DepthBuffer::new(depth, size.width, size.height)
+                .map_err(|_| RenderError::DepthTooSmall)?;
+            db.clear();
+            self.draw::<M, _, _, _, _>(r, mesh, &mut db, cache)
+        } else {
+            self.draw::<M, _, _, _, _>(r, mesh, &mut NoDepth, cache)
+        }
+    }
+}
+
+/// The band renderer into a `DrawTarget`.
+struct BandDrawer<'t, 'b, 'c, T> {
+    target: &'t mut T,
+    bands: Bands<'b>,
+    vertices: Option<&'c mut [BandVertex]>,
+}
+
+impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, T> {
+    type Error = T::Error;
+    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+        &mut self,
+        _: &Renderer<S, V, L>,
+        _: &Mesh,
+        _: &mut D,
+        _: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>> {
+        unreachable!("the band drawer draws through draw_scene")
+    }
+
+    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        _: Size,
+        depth: &mut [u16],
+        has_depth: bool,
+        _: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>> {
+        let (t, b) = (&mut *self.target, &mut self.bands);
+        match (has_depth, self.vertices.as_deref_mut()) {
+            (true, Some(c)) => {
+                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut DepthBand::new(depth), &mut Cached(c))
+            }
+            (true, None) => {
+                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut DepthBand::new(depth), &mut Recomputed)
+            }
+            (false, Some(c)) => {
+                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut NoDepth, &mut Cached(c))
+            }
+            (false, None) => r.draw_bands::<M, _, _, _>(mesh, t, b, &mut NoDepth, &mut Recomputed),
+        }
+    }
 }
 
 struct TargetDrawer<'t, T>(&'t mut T);

@@ -110,6 +110,60 @@ impl PixelSink for FramebufferSink<'_, '_> {
     }
 }
 
+/// A colour band in memory: rows `y0 ..` of a `width`-pixel-wide viewport,
+/// row-major, written in place (the band renderer's sink, with the same
+/// fast path as [`FramebufferSink`]).
+///
+/// ```
+/// use fixshade::span::{BandSink, PixelSink};
+/// let mut px = [0u16; 4 * 2];
+/// let mut sink = BandSink { buf: &mut px, width: 4, y0: 10 };
+/// sink.row(11, 1, 2).unwrap().fill(7);
+/// assert!(sink.row(9, 0, 1).is_none());
+/// assert_eq!(px, [0, 0, 0, 0, 0, 7, 7, 0]);
+/// ```
+pub struct BandSink<'b> {
+    /// The band's pixels (raw RGB565), `width` per row.
+    pub buf: &'b mut [u16],
+    /// Row length in pixels.
+    pub width: u32,
+    /// The viewport row of the band's first row.
+    pub y0: i32,
+}
+
+impl PixelSink for BandSink<'_> {
+    type Error = core::convert::Infallible;
+    #[inline(always)]
+    fn row(&mut self, y: i32, x0: i32, n: usize) -> Option<&mut [u16]> {
+        // Row and column below 2^32, n at most the width: u64 does not
+        // overflow (a negative row or column wraps to one past the band).
+        let r = y.wrapping_sub(self.y0) as u32 as u64;
+        let (x0, w) = (x0 as u32 as u64, self.width as u64);
+        if x0.saturating_add(n as u64) > w {
+            return None;
+        }
+        let start = r * w + x0;
+        if start + (n as u64) > self.buf.len() as u64 {
+            return None;
+        }
+        self.buf.get_mut(start as usize..start as usize + n)
+    }
+    fn fill(
+        &mut self,
+        y: i32,
+        x0: i32,
+        n: u32,
+        colors: impl Iterator<Item = u16>,
+    ) -> Result<(), Self::Error> {
+        if let Some(row) = self.row(y, x0, n as usize) {
+            for (p, c) in row.iter_mut().zip(colors) {
+                *p = c;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Makes the colours of a span's pixels, left to right.
 pub trait SpanShader {
     /// The colour of the current pixel (raw RGB565); moves to the next.

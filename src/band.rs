@@ -1,0 +1,654 @@
+//! Band rendering: a whole frame, depth test included, through a colour
+//! buffer (and a depth buffer) of a few rows.
+//!
+//! [`Renderer::draw_bands`] renders the frame in horizontal bands of `W × h`
+//! pixels, top to bottom. For each band it clears the caller's colour band
+//! to the background and the depth band to the far value, rasterizes the
+//! triangles that touch the band (the same pipeline as
+//! [`Renderer::draw`], with its rows limited to the band), and hands the
+//! finished band to the `DrawTarget` as one `fill_contiguous` over the
+//! band's rectangle: one address window per band on an SPI display.
+//!
+//! # Identical pixels
+//! The viewport (projection, window mapping, the attribute planes' anchor)
+//! is the whole target's for every band; only the rows drawn change. The
+//! rasterizer starts a triangle's edges and rows at the band's first row
+//! exactly where the whole-frame walk is there
+//! ([`Triangle::setup_rows`](crate::rasterizer::Triangle::setup_rows)), the
+//! triangles of a band are drawn in mesh order, and each pixel is drawn by
+//! exactly one band: the frame is bit for bit the whole-frame render
+//! (`tests/bands.rs` checks it on the standard scenes).
+//!
+//! # Vertex modes
+//! - [`Cached`]: the vertices are transformed and projected once per frame
+//!   into a caller-provided [`BandVertex`] per mesh vertex (20 bytes: window
+//!   position, depth, colour, flags), and lit once, when a visible triangle
+//!   first needs them.
+//! - [`Recomputed`]: no per-vertex storage; each triangle's vertices are
+//!   transformed, projected and lit again for every band it is drawn in.
+//!
+//! # Finding a band's triangles
+//! A frame's triangles are split into [`CHUNKS`] runs of consecutive
+//! triangles; a first pass records each run's rows (the union of its
+//! visible triangles' rows, or the whole viewport for one that crosses the
+//! near plane) in a table on the stack. A band visits only the runs whose
+//! rows it meets, and in them rejects a triangle by its rows before any
+//! set-up. Meshes whose consecutive triangles are close on screen (grids,
+//! spheres, most scanned meshes) make this cheap; the worst case is every
+//! triangle tested in every band.
+//!
+//! # Memory
+//! The caller provides the colour band (`W × h` `u16`), the depth band
+//! (`W × h` `u16`, if the scene has a depth test) and, in cached mode, one
+//! [`BandVertex`] per mesh vertex. A draw call keeps the run table
+//! ([`CHUNKS`] × 8 bytes) and a triangle's set-up on the stack.
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::raw::RawU16;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::{Point, RawData, Size};
+use embedded_graphics::primitives::Rectangle;
+
+use crate::color::Shade;
+use crate::depth::{DepthBand, DepthTest, NoDepth};
+use crate::illumination::Viewer;
+use crate::light::LightSet;
+use crate::material::Specular;
+use crate::mesh::Mesh;
+use crate::rasterizer::area2;
+use crate::rasterizer::RasterVertex;
+use crate::render::{
+    check_size, CacheCorners, CachedVertex, Corners, DrawStats, Frame, RenderError, Renderer,
+    ShadingMode,
+};
+use crate::span::BandSink;
+use crate::vector::{Unit3, Vec3};
+
+/// How many runs of consecutive triangles a frame is split into for
+/// finding each band's triangles (a table of `CHUNKS × 8` bytes on the
+/// stack).
+pub const CHUNKS: usize = 128;
+
+const B_INSIDE: u64 = 1 << 51;
+const B_FRONT: u64 = 1 << 52;
+const B_BACK: u64 = 1 << 53;
+const COLOUR_MASK: u64 = (1 << 51) - 1;
+
+/// One vertex's per-frame data for the band renderer in cached mode: 20
+/// bytes (4-aligned), against 104 for a [`CachedVertex`].
+///
+/// Window position (`x`, `y` in 1/16 pixel, clamped to ±2²⁸), depth (`Q.24`
+/// of `z_w`, clamped to ±2³⁰), and one lit colour (three 17-bit `Q.16`
+/// channels, 0 ..= 65536) with three flags, packed in 64 bits. The eye
+/// position and normal are not kept: flat and Phong shading, lighting a
+/// vertex and clipping a triangle at the near plane recompute them from the
+/// mesh, which gives the same values.
+///
+/// ```
+/// use fixshade::band::BandVertex;
+/// assert_eq!(core::mem::size_of::<BandVertex>(), 20);
+/// let cache = [BandVertex::default(); 8]; // one per mesh vertex
+/// # let _ = cache;
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BandVertex {
+    x: i32,
+    y: i32,
+    z: i32,
+    /// Colour and flags: red bits 0–16, green 17–33, blue 34–50, flags 51–53.
+    c: [u32; 2],
+}
+
+impl BandVertex {
+    #[inline(always)]
+    fn bits(&self) -> u64 {
+        self.c[0] as u64 | (self.c[1] as u64) << 32
+    }
+    #[inline(always)]
+    fn set_bits(&mut self, v: u64) {
+        self.c = [v as u32, (v >> 32) as u32];
+    }
+}
+
+fn pack(s: Shade) -> u64 {
+    let b = s.to_bits();
+    b[0] as u64 | (b[1] as u64) << 17 | (b[2] as u64) << 34
+}
+
+#[inline(always)]
+fn unpack(v: u64) -> Shade {
+    let m = (1u64 << 17) - 1;
+    Shade::from_bits(
+        (v & m) as u32,
+        ((v >> 17) & m) as u32,
+        ((v >> 34) & m) as u32,
+    )
+}
+
+/// Where the band renderer's per-vertex work is kept: [`Cached`] or
+/// [`Recomputed`].
+pub trait VertexMode {
+    /// Whether the vertices are cached.
+    const CACHED: bool;
+    /// The cache (empty for [`Recomputed`]).
+    fn cache(&mut self) -> &mut [BandVertex];
+}
+
+/// Vertices transformed, projected and lit once per frame, in caller
+/// storage of one [`BandVertex`] per mesh vertex.
+///
+/// ```
+/// use fixshade::band::{BandVertex, Cached, VertexMode};
+/// let mut storage = [BandVertex::default(); 4];
+/// let mut mode = Cached(&mut storage);
+/// assert_eq!(mode.cache().len(), 4);
+/// ```
+#[derive(Debug)]
+pub struct Cached<'c>(pub &'c mut [BandVertex]);
+
+impl VertexMode for Cached<'_> {
+    const CACHED: bool = true;
+    #[inline(always)]
+    fn cache(&mut self) -> &mut [BandVertex] {
+        self.0
+    }
+}
+
+/// No per-vertex storage: each triangle's vertices are transformed,
+/// projected and lit again in every band that draws it.
+///
+/// ```
+/// use fixshade::band::{Recomputed, VertexMode};
+/// assert!(Recomputed.cache().is_empty());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Recomputed;
+
+impl VertexMode for Recomputed {
+    const CACHED: bool = false;
+    #[inline(always)]
+    fn cache(&mut self) -> &mut [BandVertex] {
+        &mut []
+    }
+}
+
+/// A depth test the band renderer can move down the frame: [`NoDepth`] or
+/// [`DepthBand`].
+pub trait BandDepth: DepthTest {
+    /// How many depths the storage holds (unbounded for [`NoDepth`]).
+    fn capacity(&self) -> u64;
+    /// Makes this the band of rows `y0 .. y0 + rows` of a `width`-wide
+    /// viewport, cleared to the far value; `false` if it does not fit.
+    fn start_band(&mut self, width: u32, y0: u32, rows: u32) -> bool;
+}
+
+impl BandDepth for NoDepth {
+    #[inline(always)]
+    fn capacity(&self) -> u64 {
+        u64::MAX
+    }
+    #[inline(always)]
+    fn start_band(&mut self, _: u32, _: u32, _: u32) -> bool {
+        true
+    }
+}
+
+impl BandDepth for DepthBand<'_> {
+    fn capacity(&self) -> u64 {
+        DepthBand::capacity(self) as u64
+    }
+    fn start_band(&mut self, width: u32, y0: u32, rows: u32) -> bool {
+        self.start(width, y0, rows)
+    }
+}
+
+/// The caller's colour band: `height` rows of the target's width, raw
+/// RGB565, and the background each band is cleared to.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use fixshade::band::Bands;
+/// let mut colour = [0u16; 320 * 16];
+/// let bands = Bands { colour: &mut colour, height: 16, background: Rgb565::BLACK };
+/// # let _ = bands;
+/// ```
+#[derive(Debug)]
+pub struct Bands<'b> {
+    /// At least `width × height` pixels (of the band actually used:
+    /// `height` is capped at the target's height).
+    pub colour: &'b mut [u16],
+    /// Rows per band, at least 1.
+    pub height: u32,
+    /// The colour of pixels no triangle covers.
+    pub background: Rgb565,
+}
+
+/// The rows `[lo, hi]` of a triangle's pixel centres (from its window
+/// `y`s, 1/16 pixel).
+#[inline(always)]
+fn rows_of(y: [i64; 3]) -> (i64, i64) {
+    let miny = y[0].min(y[1]).min(y[2]);
+    let maxy = y[0].max(y[1]).max(y[2]);
+    ((miny + 7) >> 4, (maxy - 8) >> 4)
+}
+
+/// The rows a triangle may draw in the viewport, or `None` when it draws
+/// nothing (behind the near plane, no area, culled, or no pixel centre in
+/// the viewport). A triangle crossing the near plane may draw any row.
+#[inline(always)]
+fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
+    f: &Frame<'_, '_, S, V, L>,
+    c: &C,
+    cull: bool,
+) -> Option<(i32, i32)> {
+    let inside = [c.inside(0), c.inside(1), c.inside(2)];
+    let vp = f.viewport;
+    if !(inside[0] && inside[1] && inside[2]) {
+        return (inside[0] || inside[1] || inside[2]).then_some((vp.y0, vp.y1));
+    }
+    let w = [c.win(0), c.win(1), c.win(2)];
+    let a = area2(&w.map(|v| RasterVertex::<0> {
+        x: v[0],
+        y: v[1],
+        attr: [],
+    }));
+    if a == 0 || (a > 0 && cull) {
+        return None;
+    }
+    let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);
+    let (xlo, xhi) = rows_of([w[0][0], w[1][0], w[2][0]]);
+    let (lo, hi) = (lo.max(vp.y0 as i64), hi.min(vp.y1 as i64));
+    if lo > hi || xlo > vp.x1 as i64 || xhi < vp.x0 as i64 {
+        return None;
+    }
+    Some((lo as i32, hi as i32))
+}
+
+/// Corners from the compact [`BandVertex`] cache.
+struct BandCorners<'c> {
+    cache: &'c mut [BandVertex],
+    idx: [usize; 3],
+}
+
+impl Corners for BandCorners<'_> {
+    #[inline(always)]
+    fn inside(&self, k: usize) -> bool {
+        self.cache[self.idx[k]].c[1] & ((B_INSIDE >> 32) as u32) != 0
+    }
+    #[inline(always)]
+    fn win(&self, k: usize) -> [i64; 3] {
+        let v = &self.cache[self.idx[k]];
+        [v.x as i64, v.y as i64, v.z as i64]
+    }
+    fn clip<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+    ) -> [i64; 4] {
+        f.proj.clip(f.eye(self.idx[k]))
+    }
+    #[inline(always)]
+    fn shade<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        back: bool,
+        stats: &mut DrawStats,
+    ) -> Shade {
+        let i = self.idx[k];
+        let bits = self.cache[i].bits();
+        let want = if back { B_BACK } else { B_FRONT };
+        if bits & want != 0 {
+            return unpack(bits);
+        }
+        light_band_vertex(f, &mut self.cache[i], i, want, stats)
+    }
+    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        k: usize,
+        normal: bool,
+    ) -> (Vec3, Unit3) {
+        let i = self.idx[k];
+        let n = if normal { f.eye_normal(i) } else { Unit3::ZERO };
+        (f.eye(i), n)
+    }
+}
+
+/// Lights `v` (mesh vertex `i`) for the facing `want` (`B_FRONT` or
+/// `B_BACK`), keeping the colour if the vertex has none yet.
+#[inline(never)]
+fn light_band_vertex<S: Specular, V: Viewer, L: LightSet>(
+    f: &Frame<'_, '_, S, V, L>,
+    v: &mut BandVertex,
+    i: usize,
+    want: u64,
+    stats: &mut DrawStats,
+) -> Shade {
+    let bits = v.bits();
+    let n = f.eye_normal(i);
+    let back = want == B_BACK;
+    let s =
+        f.r.lighting()
+            .shade(f.eye(i), if back { n.neg() } else { n });
+    stats.lit += 1;
+    // One colour is kept: the first facing asked for (the other one, of
+    // two-sided silhouette vertices only, is lit each time).
+    if bits & (B_FRONT | B_BACK) == 0 {
+        v.set_bits((bits & !COLOUR_MASK) | pack(s) | want);
+    }
+    s
+}
+
+/// Rows per band actually used (at most the viewport's height) and the
+/// checks of the caller's buffers.
+fn check_band<E, D: BandDepth, X: VertexMode>(
+    size: Size,
+    bands: &Bands,
+    depth: &D,
+    vertices: &mut X,
+    n_vertices: usize,
+) -> Result<u32, RenderError<E>> {
+    check_size(size)?;
+    if X::CACHED && vertices.cache().len() < n_vertices {
+        return Err(RenderError::CacheTooSmall);
+    }
+    let rows = bands.height.min(size.height);
+    let need = size.width as u64 * rows as u64;
+    if bands.height == 0 || (bands.colour.len() as u64) < need {
+        return Err(RenderError::BandTooSmall);
+    }
+    if D::ENABLED && depth.capacity() < need {
+        return Err(RenderError::DepthTooSmall);
+    }
+    Ok(rows)
+}
+
+impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
+    /// Renders the whole frame into `target` band by band through the
+    /// caller's band buffers (see the [module docs](crate::band)): the
+    /// pixels are those that clearing the target to `bands.background`, the
+    /// depth buffer to the far value and calling [`Renderer::draw`] gives.
+    ///
+    /// `depth` is [`NoDepth`] or a [`DepthBand`] of at least `width × h`
+    /// values; `vertices` is [`Recomputed`] or [`Cached`] with one
+    /// [`BandVertex`] per mesh vertex. Each band goes to the target as one
+    /// `fill_contiguous` of `width × h` pixels (the last band may be
+    /// shorter). Buffers too small are errors
+    /// ([`RenderError::BandTooSmall`], [`RenderError::DepthTooSmall`],
+    /// [`RenderError::CacheTooSmall`]) and nothing is drawn; any band
+    /// height of at least 1 works. The counts are summed over the bands (a
+    /// triangle drawn in two bands counts twice in `drawn`).
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+    /// use fixshade::band::{BandVertex, Bands, Cached, Recomputed};
+    /// use fixshade::camera::Camera;
+    /// use fixshade::depth::DepthBand;
+    /// use fixshade::framebuffer::Framebuffer;
+    /// use fixshade::illumination::InfiniteViewer;
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::mesh::Mesh;
+    /// use fixshade::render::{Gouraud, RenderError, RenderOptions, Renderer};
+    /// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    ///
+    /// static P: [Vec3; 3] = [
+    ///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    ///     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    ///     Vec3::from_bits(0, 1 << 24, 0),
+    /// ];
+    /// static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::<_, InfiniteViewer, _>::new(
+    ///     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+    /// );
+    /// // The display: here a framebuffer; any DrawTarget<Color = Rgb565>.
+    /// let mut px = [0u16; 32 * 32];
+    /// let mut display = Framebuffer::new(&mut px, 32, 32).unwrap();
+    /// // A band of 32 × 4 pixels, colour and depth: 512 bytes.
+    /// let (mut colour, mut z) = ([0u16; 32 * 4], [0u16; 32 * 4]);
+    /// let mut bands = Bands { colour: &mut colour, height: 4, background: Rgb565::BLUE };
+    /// let mut cache = [BandVertex::default(); 3];
+    /// renderer
+    ///     .draw_bands::<Gouraud, _, _, _>(&mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z), &mut Cached(&mut cache))
+    ///     .unwrap();
+    /// assert_eq!(display.pixel(16, 16), Some(Rgb565::new(25, 50, 25)));
+    /// assert_eq!(display.pixel(0, 0), Some(Rgb565::BLUE));
+    /// // No vertex storage at all:
+    /// renderer
+    ///     .draw_bands::<Gouraud, _, _, _>(&mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z), &mut Recomputed)
+    ///     .unwrap();
+    /// // A depth band too small for the band is an error.
+    /// let err = renderer.draw_bands::<Gouraud, _, _, _>(
+    ///     &mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z[..100]), &mut Recomputed,
+    /// );
+    /// assert_eq!(err, Err(RenderError::DepthTooSmall));
+    /// ```
+    pub fn draw_bands<M, T, D, X>(
+        &self,
+        mesh: &Mesh,
+        target: &mut T,
+        bands: &mut Bands,
+        depth: &mut D,
+        vertices: &mut X,
+    ) -> Result<DrawStats, RenderError<T::Error>>
+    where
+        M: ShadingMode,
+        T: DrawTarget<Color = Rgb565>,
+        D: BandDepth,
+        X: VertexMode,
+    {
+        mesh.validate().map_err(RenderError::Mesh)?;
+        let bb = target.bounding_box();
+        let size = bb.size;
+        let n = mesh.positions.len();
+        let h = check_band(size, bands, depth, vertices, n)?;
+        let mut stats = DrawStats {
+            triangles: mesh.indices.len() as u32,
+            ..DrawStats::default()
+        };
+        let Some(mut frame) = self.frame(mesh, size)? else {
+            return Ok(stats);
+        };
+        let cull = self.options().cull;
+        let cache = &mut vertices.cache()[..if X::CACHED { n } else { 0 }];
+        if X::CACHED {
+            prepare_cache(&frame, cache);
+        }
+        let runs = Runs::new(mesh.indices.len());
+        let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
+        for (t, tri) in mesh.indices.iter().enumerate() {
+            let idx = tri.map(|i| i as usize);
+            let rows = if X::CACHED {
+                visible_rows(&frame, &BandCorners { cache, idx }, cull)
+            } else {
+                let mut local = project3(&frame, idx);
+                let c = CacheCorners {
+                    cache: &mut local,
+                    slot: [0, 1, 2],
+                    vertex: idx,
+                };
+                visible_rows(&frame, &c, cull)
+            };
+            if let Some((lo, hi)) = rows {
+                let b = &mut bounds[t / runs.per];
+                *b = (b.0.min(lo), b.1.max(hi));
+            }
+        }
+        let w = size.width;
+        let mut y0 = 0u32;
+        while y0 < size.height {
+            let rows = h.min(size.height - y0);
+            let (b0, b1) = (y0 as i32, (y0 + rows - 1) as i32);
+            frame.rows = (b0, b1);
+            let npx = (w * rows) as usize;
+            let raw_bg = RawU16::from(bands.background).into_inner();
+            bands.colour[..npx].fill(raw_bg);
+            if !depth.start_band(w, y0, rows) {
+                return Err(RenderError::DepthTooSmall);
+            }
+            let mut sink = BandSink {
+                buf: &mut bands.colour[..npx],
+                width: w,
+                y0: b0,
+            };
+            for (r, &(lo, hi)) in bounds.iter().enumerate() {
+                if hi < b0 || lo > b1 {
+                    continue;
+                }
+                let end = ((r + 1) * runs.per).min(mesh.indices.len());
+                for tri in &mesh.indices[r * runs.per..end] {
+                    let idx = tri.map(|i| i as usize);
+                    let res = if X::CACHED {
+                        band_triangle_cached::<M, _, _, _, _, _>(
+                            &frame, cache, idx, &mut sink, depth, &mut stats,
+                        )
+                    } else {
+                        band_triangle_recomputed::<M, _, _, _, _, _>(
+                            &frame, idx, &mut sink, depth, &mut stats,
+                        )
+                    };
+                    res.map_err(lift)?;
+                }
+            }
+            let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
+            target
+                .fill_contiguous(
+                    &area,
+                    bands.colour[..npx]
+                        .iter()
+                        .map(|&p| Rgb565::from(RawU16::new(p))),
+                )
+                .map_err(RenderError::Target)?;
+            y0 += rows;
+        }
+        Ok(stats)
+    }
+}
+
+/// Runs of consecutive triangles.
+struct Runs {
+    /// Triangles per run.
+    per: usize,
+}
+
+impl Runs {
+    fn new(triangles: usize) -> Runs {
+        Runs {
+            per: triangles.div_ceil(CHUNKS).max(1),
+        }
+    }
+}
+
+/// Transforms and projects every vertex into the compact cache (no
+/// colour yet).
+fn prepare_cache<S: Specular, V: Viewer, L: LightSet>(
+    f: &Frame<'_, '_, S, V, L>,
+    cache: &mut [BandVertex],
+) {
+    for (i, v) in cache.iter_mut().enumerate() {
+        let clip = f.proj.clip(f.eye(i));
+        let inside = clip[2] + clip[3] >= 0;
+        let w = if inside { f.window(&clip) } else { [0; 3] };
+        // Window positions are clamped to ±2^28, depths to ±2^30: i32.
+        *v = BandVertex {
+            x: w[0] as i32,
+            y: w[1] as i32,
+            z: w[2] as i32,
+            c: [0, 0],
+        };
+        if inside {
+            v.set_bits(B_INSIDE);
+        }
+    }
+}
+
+#[inline(always)]
+fn project3<S: Specular, V: Viewer, L: LightSet>(
+    f: &Frame<'_, '_, S, V, L>,
+    idx: [usize; 3],
+) -> [CachedVertex; 3] {
+    let mut l = [CachedVertex::default(); 3];
+    for (c, &i) in l.iter_mut().zip(&idx) {
+        f.project(c, i);
+    }
+    l
+}
+
+/// Draws triangle `idx` in the current band from the compact cache, after
+/// rejecting it by its rows.
+#[inline(always)]
+fn band_triangle_cached<M, P, D, S, V, L>(
+    f: &Frame<'_, '_, S, V, L>,
+    cache: &mut [BandVertex],
+    idx: [usize; 3],
+    sink: &mut P,
+    depth: &mut D,
+    stats: &mut DrawStats,
+) -> Result<(), RenderError<P::Error>>
+where
+    M: ShadingMode,
+    P: crate::span::PixelSink,
+    D: DepthTest,
+    S: Specular,
+    V: Viewer,
+    L: LightSet,
+{
+    let v = [&cache[idx[0]], &cache[idx[1]], &cache[idx[2]]];
+    let all_inside = v[0].c[1] & v[1].c[1] & v[2].c[1] & ((B_INSIDE >> 32) as u32) != 0;
+    if all_inside {
+        let (lo, hi) = rows_of([v[0].y as i64, v[1].y as i64, v[2].y as i64]);
+        if hi < f.rows.0 as i64 || lo > f.rows.1 as i64 {
+            return Ok(());
+        }
+    }
+    f.triangle::<M, P, D, _>(&mut BandCorners { cache, idx }, sink, depth, stats)
+}
+
+/// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
+/// in the current band.
+#[inline(always)]
+fn band_triangle_recomputed<M, P, D, S, V, L>(
+    f: &Frame<'_, '_, S, V, L>,
+    idx: [usize; 3],
+    sink: &mut P,
+    depth: &mut D,
+    stats: &mut DrawStats,
+) -> Result<(), RenderError<P::Error>>
+where
+    M: ShadingMode,
+    P: crate::span::PixelSink,
+    D: DepthTest,
+    S: Specular,
+    V: Viewer,
+    L: LightSet,
+{
+    let mut l = project3(f, idx);
+    let mut c = CacheCorners {
+        cache: &mut l,
+        slot: [0, 1, 2],
+        vertex: idx,
+    };
+    if c.inside(0) && c.inside(1) && c.inside(2) {
+        let (lo, hi) = rows_of([c.win(0)[1], c.win(1)[1], c.win(2)[1]]);
+        if hi < f.rows.0 as i64 || lo > f.rows.1 as i64 {
+            return Ok(());
+        }
+    }
+    f.triangle::<M, P, D, _>(&mut c, sink, depth, stats)
+}
+
+/// An error of the band sink (memory, which cannot fail) as the target's.
+fn lift<E>(e: RenderError<core::convert::Infallible>) -> RenderError<E> {
+    match e {
+        RenderError::Mesh(m) => RenderError::Mesh(m),
+        RenderError::Camera(c) => RenderError::Camera(c),
+        RenderError::CacheTooSmall => RenderError::CacheTooSmall,
+        RenderError::DepthTooSmall => RenderError::DepthTooSmall,
+        RenderError::BandTooSmall => RenderError::BandTooSmall,
+        RenderError::TargetTooLarge => RenderError::TargetTooLarge,
+        RenderError::Target(e) => match e {},
+    }
+}
