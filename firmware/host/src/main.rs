@@ -1,3 +1,6 @@
+//! `fixshade-firmware-host --report RAW_DIR REPORT_DIR`: the report of
+//! scripts/firmware.sh (see `report.rs`).
+//!
 //! `fixshade-firmware-host OUT_DIR`: renders every frame the firmware
 //! renders (firmware/common/scenes.rs) on the host with
 //! `KernelScene::render_framebuffer`, and writes `OUT_DIR/NAME.bin` (raw
@@ -10,11 +13,23 @@ use fixshade::framebuffer::Framebuffer;
 use fixshade::render::CachedVertex;
 use fixshade::scene_kernel::KernelScene;
 
+mod report;
+
 #[path = "../../common/scenes.rs"]
 #[allow(dead_code)]
 mod scenes;
 
 fn main() -> ExitCode {
+    let args: Vec<_> = std::env::args_os().collect();
+    if args.len() == 4 && args[1] == "--report" {
+        return match report::run(args[2].as_ref(), args[3].as_ref()) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("report: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let Some(out) = std::env::args_os().nth(1).map(PathBuf::from) else {
         eprintln!("usage: fixshade-firmware-host OUT_DIR");
         return ExitCode::from(2);
