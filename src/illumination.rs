@@ -33,7 +33,7 @@ use crate::color::{Rgb, Shade, SHADE_ONE};
 use crate::light::LightSet;
 use crate::light::PreparedLights;
 use crate::material::{Material, Specular};
-use crate::normalize::{normalize, normalize_len};
+use crate::normalize::normalize;
 use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{Mat4, Unit3, Vec3};
 
@@ -219,10 +219,10 @@ impl Viewer for LocalViewer {
 #[inline]
 pub fn view_dir<V: Viewer>(p: Vec3) -> Unit3 {
     if V::LOCAL {
-        let b = p.to_bits();
-        normalize_len([-(b[0] as i64), -(b[1] as i64), -(b[2] as i64)])
-            .map(|(u, _)| u)
-            .unwrap_or(Unit3::ZERO)
+        // −P; saturating (−i32::MIN does not fit), a change far below the
+        // I2F14 result's precision.
+        let b = p.to_bits().map(|c| c.saturating_neg());
+        normalize(b).unwrap_or(Unit3::ZERO)
     } else {
         Unit3::Z
     }

@@ -651,7 +651,7 @@ fn point_factor<A: Falloff, const SPOT: bool>(
     let p = ctx.position.to_bits();
     // |pos| ≤ 2^62, |p| < 2^31: the difference cannot overflow.
     let v = [0, 1, 2].map(|i| pos[i] - p[i] as i64);
-    let (l, d) = normalize_len(v)?;
+    let (l, d) = light_vector(v)?;
     let mut sf = A::factor(att, d);
     if SPOT {
         let delta = l.neg().half_dist_sq(cone.axis);
@@ -662,6 +662,24 @@ fn point_factor<A: Falloff, const SPOT: bool>(
         sf = (s * sf + (1 << 14)) >> 15;
     }
     Some((l, sf))
+}
+
+/// The unit vector and length of `v` (`I40F24` raw). Where every component
+/// fits `i32` (the light within 128 units of the point, the usual case) the
+/// 32-bit normalisation is used and the length is `v·l`: `l` is `v/|v|` to
+/// within 0.52 ULP per component, so `v·l = |v|·(1 + ε)` with `|ε| < 2⁻¹⁴`,
+/// far below what the attenuation needs. Otherwise the 64-bit path.
+#[inline(always)]
+fn light_vector(v: [i64; 3]) -> Option<(Unit3, u64)> {
+    let fits = v.iter().all(|c| c.unsigned_abs() < 1 << 31);
+    if !fits {
+        return normalize_len(v);
+    }
+    let l = normalize([v[0] as i32, v[1] as i32, v[2] as i32])?;
+    let b = l.to_bits();
+    // |v_i| < 2^31, |l_i| ≤ 2^14: each product below 2^45.
+    let dot = v[0] * b[0] as i64 + v[1] * b[1] as i64 + v[2] * b[2] as i64;
+    Some((l, (dot.max(0) >> 14) as u64))
 }
 
 impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {

@@ -286,6 +286,52 @@ impl Mat4 {
         Mat4::from_f64(rows.map(|r| r.map(f64::from)))
     }
 
+    /// A rotation by `angle` radians about the x (`axis = 0`), y (`1`) or z
+    /// (`2`) axis, right-handed, for animating a model on the device.
+    ///
+    /// The sine and cosine come from `micromath` (an approximation with a
+    /// maximum error of 0.002, so the angle is off by up to about 0.002
+    /// radian), then the pair is scaled by one Newton step towards
+    /// `sin² + cos² = 1`, so the matrix is a rotation to about 10⁻⁵. Basic
+    /// `f32` arithmetic is IEEE-exact, so the matrix is the same bits on
+    /// the host and on a Cortex-M. An `axis` above 2 counts as z; a
+    /// non-finite angle gives the identity.
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let quarter = Mat4::rotation(1, core::f32::consts::FRAC_PI_2);
+    /// let p = quarter.transform_point(Vec3::from_f32(1.0, 0.0, 0.0).unwrap()).to_f32();
+    /// assert!(p[0].abs() < 0.003 && (p[2] + 1.0).abs() < 1e-4);
+    /// ```
+    pub fn rotation(axis: u8, angle: f32) -> Mat4 {
+        if !angle.is_finite() {
+            return Mat4::IDENTITY;
+        }
+        // Reduce to [-π, π] so the approximation stays in its best range.
+        let tau = 2.0 * core::f32::consts::PI;
+        let a = angle - tau * micromath::F32Ext::round(angle / tau);
+        let (s, c) = (micromath::F32Ext::sin(a), micromath::F32Ext::cos(a));
+        // 1/√(s² + c²) ≈ (3 − (s² + c²)) / 2 near 1 (one Newton step from 1).
+        let k = 0.5 * (3.0 - (s * s + c * c));
+        let (s, c) = (s * k, c * k);
+        let q = |v: f32| (v * (1u32 << COORD_FRAC) as f32) as i32;
+        let (s, c, one) = (q(s), q(c), ONE24);
+        let m = match axis {
+            0 => [[one, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, one]],
+            1 => [[c, 0, s, 0], [0, one, 0, 0], [-s, 0, c, 0], [0, 0, 0, one]],
+            _ => [[c, -s, 0, 0], [s, c, 0, 0], [0, 0, one, 0], [0, 0, 0, one]],
+        };
+        Mat4 { m }
+    }
+
+    /// A uniform scale by `s` (`I8F24`, saturating).
+    pub const fn scale(s: I8F24) -> Mat4 {
+        let v = s.to_bits();
+        Mat4 {
+            m: [[v, 0, 0, 0], [0, v, 0, 0], [0, 0, v, 0], [0, 0, 0, ONE24]],
+        }
+    }
+
     /// Builds a matrix from `f64` entries (row-major), rounding to nearest;
     /// errors as [`coord_from_f32`].
     pub fn from_f64(rows: [[f64; 4]; 4]) -> Result<Mat4, FormatError> {
