@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Firmware checks (issue 8), deterministic, on emulated Cortex-M:
+#  (and the Cortex-M0 firmware on QEMU's microbit, 16 KB of RAM, band by band)
 #  1. builds the QEMU instruction-count plugin, the host reference renderer
 #     and the firmware for thumbv7em-none-eabihf (Cortex-M4F) and
 #     thumbv6m-none-eabi (the Cortex-M0+ instruction set, RP2040's);
@@ -51,7 +52,7 @@ for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
     (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-fw)
     elf=$TGT/qemu/$t/release/fixshade-fw
     run_counted "$elf" "$OUT/$t" || { echo "firmware failed on $t"; cat "$OUT/$t/console.log"; exit 1; }
-    for f in "$OUT/host"/*.bin; do
+    for f in "$OUT/host"/s*.bin; do
         n=$(basename "$f")
         if cmp -s "$f" "$OUT/$t/$n"; then
             echo "  $n: identical to the host's"
@@ -60,6 +61,28 @@ for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
             status=1
         fi
     done
+done
+echo "== firmware for the Cortex-M0 with 16 KB of RAM (QEMU microbit), band by band"
+(cd firmware/microbit && CARGO_TARGET_DIR=$TGT/microbit cargo build --release -q)
+elf=$TGT/microbit/thumbv6m-none-eabi/release/fixshade-fw-m0
+d=$OUT/microbit
+mkdir -p "$d"
+b=$(sym "$elf" fw_count_begin)
+e=$(sym "$elf" fw_count_end)
+(cd "$d" && timeout 900 qemu-system-arm -machine microbit -nographic -monitor none -serial none \
+    -semihosting-config enable=on,target=native \
+    -plugin "$OUT/libinsn_count.so,begin=$b,end=$e,out=$d/counts.txt" \
+    -kernel "$elf" > "$d/console.log") || { echo "microbit firmware failed"; cat "$d/console.log"; exit 1; }
+arm-none-eabi-size -A "$elf" > "$d/size.txt"
+echo "  $(cat "$d/console.log")"
+for f in "$OUT/host"/m0_*.bin; do
+    n=$(basename "$f")
+    if cmp -s "$f" "$d/$n"; then
+        echo "  $n: identical to the host's"
+    else
+        echo "  $n: DIFFERS from the host's"
+        status=1
+    fi
 done
 [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 

@@ -53,3 +53,16 @@ pub fn variants() -> Vec<Variant> {
     }
     out
 }
+
+/// What the Cortex-M0 firmware (firmware/microbit, 16 KB of RAM) renders:
+/// S1's scene with a sphere of 8 × 4 segments, whose 45-vertex cache
+/// (4.7 KB) fits beside a band of rows. S1's own 1225 vertices need a
+/// 127 KB cache.
+pub fn m0_variants() -> Vec<Variant> {
+    let (w, h) = (standard_scenes::WIDTH, standard_scenes::HEIGHT);
+    vec![Variant {
+        name: "m0_sphere8_gouraud".into(),
+        mesh: "sphere8",
+        desc: standard_scenes::sphere_scene(w, h, 8, 4),
+    }]
+}

@@ -11,6 +11,7 @@ use std::{env, fs};
 #[allow(dead_code)]
 mod codegen;
 #[path = "../common/scenes.rs"]
+#[allow(dead_code)]
 mod scenes;
 
 fn main() {

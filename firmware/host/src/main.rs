@@ -38,7 +38,7 @@ fn main() -> ExitCode {
         eprintln!("{}: {e}", out.display());
         return ExitCode::FAILURE;
     }
-    for v in scenes::variants() {
+    for v in scenes::variants().into_iter().chain(scenes::m0_variants()) {
         let scene = match KernelScene::new(&v.desc) {
             Ok(s) => s,
             Err(e) => {
