@@ -12,7 +12,8 @@
 #  4. builds the flash/RAM scene configurations for both targets, sizes
 #     them with arm-none-eabi-size, runs them for the stack high-water
 #     mark and the instruction count;
-#  5. writes report/firmware_counts.json and report/firmware.md.
+#  5. writes report/firmware_counts.json and report/firmware.md (into
+#     $FIRMWARE_REPORT instead if set).
 # Needs: qemu-system-arm, binutils-arm-none-eabi, gcc, the two Rust targets.
 # FIRMWARE_QUICK=1 skips step 4.
 set -euo pipefail
@@ -20,6 +21,7 @@ cd "$(dirname "$0")/.."
 ROOT=$PWD
 OUT=${FIRMWARE_OUT:-$ROOT/target/firmware}
 TGT=${CARGO_TARGET_DIR_FW:-$ROOT/target/fw}
+REPORT=${FIRMWARE_REPORT:-$ROOT/report}
 rm -rf "$OUT"
 mkdir -p "$OUT"
 
@@ -109,4 +111,4 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
 fi
 
 echo "== report"
-CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --report "$OUT" "$ROOT/report"
+CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --report "$OUT" "$REPORT"
