@@ -46,12 +46,15 @@ pub struct Variant {
     /// Mesh vertices.
     pub vertices: usize,
     /// Clears and renders into a framebuffer.
-    pub render: fn(
-        &mut Framebuffer,
-        &mut [u16],
-        &mut [CachedVertex],
-    ) -> Result<DrawStats, RenderError<Infallible>>,
+    pub render: RenderFn,
 }
+
+/// A scene's render function: framebuffer, depth storage, vertex cache.
+pub type RenderFn = fn(
+    &mut Framebuffer,
+    &mut [u16],
+    &mut [CachedVertex],
+) -> Result<DrawStats, RenderError<Infallible>>;
 
 /// Markers for the instruction-counting plugin: it starts counting when
 /// `fw_count_begin` executes and stops at `fw_count_end` (their addresses
@@ -129,18 +132,22 @@ pub mod stack {
 pub mod host {
     use cortex_m_semihosting::{debug, nr, syscall};
 
+    /// A host file could not be opened or written.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub struct HostIoError;
+
     /// Writes `data` to the host file `name` (NUL-terminated), relative to
     /// QEMU's working directory (semihosting `SYS_OPEN`, `SYS_WRITE`,
     /// `SYS_CLOSE`).
-    pub fn write_file(name: &str, data: &[u8]) -> Result<(), ()> {
+    pub fn write_file(name: &str, data: &[u8]) -> Result<(), HostIoError> {
         let n = name.as_bytes();
         if n.last() != Some(&0) {
-            return Err(());
+            return Err(HostIoError);
         }
         // SAFETY: `name` is NUL-terminated; the length excludes the NUL.
         let fd = unsafe { syscall!(OPEN, n.as_ptr(), nr::open::W_TRUNC_BINARY, n.len() - 1) };
         if fd as isize == -1 {
-            return Err(());
+            return Err(HostIoError);
         }
         let mut rest = data;
         while !rest.is_empty() {
@@ -148,7 +155,7 @@ pub mod host {
             // *not* written.
             let left = unsafe { syscall!(WRITE, fd, rest.as_ptr(), rest.len()) };
             if left > rest.len() {
-                return Err(());
+                return Err(HostIoError);
             }
             rest = &rest[rest.len() - left..];
             if left == 0 {
