@@ -110,5 +110,13 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     done
 fi
 
+echo "== profiles: where S1's and S2's instructions go"
+for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+    for n in 0 1; do
+        CARGO_TARGET_DIR_FW=$TGT FIRMWARE_OUT=$OUT scripts/firmware_profile.sh $t $n 12 \
+            > "$OUT/$t/profile_$n.txt"
+    done
+done
+
 echo "== report"
 CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --report "$OUT" "$REPORT"

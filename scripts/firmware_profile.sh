@@ -15,6 +15,8 @@ N=${2:-0}
 L=${3:-25}
 TGT=${CARGO_TARGET_DIR_FW:-$PWD/target/fw}
 OUT=${FIRMWARE_OUT:-$PWD/target/firmware}
+TGT=$(cd "$TGT" && pwd)
+OUT=$(cd "$OUT" && pwd)
 ELF=$TGT/qemu/$T/release/fixshade-fw
 PLUGIN=$OUT/libinsn_count.so
 [ -f "$ELF" ] && [ -f "$PLUGIN" ] || { echo "run scripts/firmware.sh first" >&2; exit 1; }

@@ -296,6 +296,19 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
         num(&m0, "stack")?,
         section(&m0_size, ".bss")
     );
+    let _ = writeln!(
+        md,
+        "## Where the instructions go\n\n\
+         `scripts/firmware_profile.sh TARGET FRAME`: per linked function (callees not included), \
+         then per innermost function including inlined ones. Frame 0 is S1, frame 1 is S2.\n"
+    );
+    for (t, core) in TARGETS {
+        for n in 0..2 {
+            if let Ok(p) = read(&raw.join(t).join(format!("profile_{n}.txt"))) {
+                let _ = writeln!(md, "{core}, {}:\n\n```text\n{}```\n", ["S1", "S2"][n], p);
+            }
+        }
+    }
     js.push_str("  \"configurations\": {\n");
     let _ = writeln!(
         md,
