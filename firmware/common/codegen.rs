@@ -1,0 +1,282 @@
+//! Host side: writes a scene as Rust source in the kernel's formats, for
+//! firmware that cannot run the `std` scene code.
+//!
+//! Every value is converted exactly as `fixshade::scene_kernel::KernelScene`
+//! converts it on the host (the same kernel functions on the same `f64`s),
+//! and written as raw bits, so the device renders from the very inputs the
+//! host renders from.
+
+use std::fmt::Write;
+
+use fixshade::camera::Camera;
+use fixshade::color::{Rgb, Shade};
+use fixshade::light::{unit_from_f64, Attenuation, SpotCone, WidePoint};
+use fixshade::mesh::vertex_normals;
+use fixshade::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
+use fixshade::{Exponent, Mat4, Unit3, Vec3};
+
+/// `Rgb::from_bits(..)` for a colour in `[0, ∞)`.
+pub fn rgb(c: [f64; 3]) -> String {
+    let b = Rgb::from_f64(c).expect("colour").to_bits();
+    format!("Rgb::from_bits({}, {}, {})", b[0], b[1], b[2])
+}
+
+fn unit(u: Unit3) -> String {
+    let b = u.to_bits();
+    format!("Unit3::new_clamped({}, {}, {})", b[0], b[1], b[2])
+}
+
+fn mat4(m: &Mat4) -> String {
+    format!("Mat4 {{ m: {:?} }}", m.m)
+}
+
+fn wide(p: [f64; 3]) -> String {
+    let b = WidePoint::from_f64(p).expect("light position").to_bits();
+    format!("WidePoint::from_bits({}, {}, {})", b[0], b[1], b[2])
+}
+
+fn attenuation(a: [f64; 3]) -> String {
+    let c = Attenuation::from_f64(a).expect("attenuation").c;
+    format!(
+        "Attenuation {{ c: [U32F32::from_bits({}), U32F32::from_bits({}), U32F32::from_bits({})] }}",
+        c[0].to_bits(),
+        c[1].to_bits(),
+        c[2].to_bits()
+    )
+}
+
+/// A light as a constant expression, and its type.
+pub fn light(l: &LightDesc) -> (String, &'static str) {
+    match l {
+        LightDesc::Directional {
+            direction,
+            diffuse,
+            specular,
+        } => (
+            format!(
+                "DirectionalLight::from_unit({}).with_diffuse({}).with_specular({})",
+                unit(unit_from_f64(*direction).expect("direction")),
+                rgb(*diffuse),
+                rgb(*specular)
+            ),
+            "DirectionalLight",
+        ),
+        LightDesc::Point {
+            position,
+            diffuse,
+            specular,
+            attenuation: a,
+        } => (point(*position, *diffuse, *specular, *a), "PointLight"),
+        LightDesc::Spot {
+            position,
+            axis,
+            cutoff_deg,
+            exponent,
+            diffuse,
+            specular,
+            attenuation: a,
+        } => {
+            let cone = SpotCone::from_f64(*axis, *cutoff_deg, *exponent).expect("cone");
+            (
+                format!(
+                    "SpotLight {{ light: {}, cone: SpotCone {{ axis: {}, delta_cutoff: {}, exponent: Exponent::from_bits({}) }} }}",
+                    point(*position, *diffuse, *specular, *a),
+                    unit(cone.axis),
+                    cone.delta_cutoff,
+                    cone.exponent.to_bits()
+                ),
+                "SpotLight",
+            )
+        }
+        LightDesc::Area { .. } => panic!("area lights are not used by the firmware scenes"),
+    }
+}
+
+fn point(p: [f64; 3], d: [f64; 3], s: [f64; 3], a: [f64; 3]) -> String {
+    format!(
+        "PointLight {{ position: {}, diffuse: {}, specular: {}, attenuation: {} }}",
+        wide(p),
+        rgb(d),
+        rgb(s),
+        attenuation(a)
+    )
+}
+
+/// `pub static {NAME}_P`, `_N`, `_I`: positions, normals, indices.
+pub fn mesh_statics(name: &str, m: &MeshDesc) -> String {
+    let positions: Vec<Vec3> = m
+        .positions
+        .iter()
+        .map(|p| Vec3::from_f64(*p).expect("position"))
+        .collect();
+    let indices: Vec<[u16; 3]> = m
+        .indices
+        .iter()
+        .map(|t| t.map(|i| u16::try_from(i).expect("index fits u16")))
+        .collect();
+    let normals: Vec<Unit3> = match &m.normals {
+        Some(ns) => ns
+            .iter()
+            .map(|n| unit_from_f64(*n).unwrap_or(Unit3::ZERO))
+            .collect(),
+        None => {
+            let mut sums = vec![[0i32; 3]; positions.len()];
+            let mut out = vec![Unit3::ZERO; positions.len()];
+            vertex_normals(&positions, &indices, &mut sums, &mut out).expect("normals");
+            out
+        }
+    };
+    let up = name.to_uppercase();
+    let mut s = String::new();
+    let _ = writeln!(s, "pub static {up}_P: [Vec3; {}] = [", positions.len());
+    for p in &positions {
+        let b = p.to_bits();
+        let _ = writeln!(s, "Vec3::from_bits({}, {}, {}),", b[0], b[1], b[2]);
+    }
+    let _ = writeln!(s, "];\npub static {up}_N: [Unit3; {}] = [", normals.len());
+    for n in &normals {
+        let _ = writeln!(s, "{},", unit(*n));
+    }
+    let _ = writeln!(
+        s,
+        "];\npub static {up}_I: [[u16; 3]; {}] = [",
+        indices.len()
+    );
+    for t in &indices {
+        let _ = writeln!(s, "[{}, {}, {}],", t[0], t[1], t[2]);
+    }
+    s.push_str("];\n");
+    s
+}
+
+/// A scene's set-up in kernel types, as Rust source.
+pub struct Setup {
+    /// `Camera { .. }` (a constant expression).
+    pub camera: String,
+    /// The model matrix.
+    pub model: String,
+    /// The material, built at run time (`with_specular` is not `const`).
+    pub material: String,
+    /// The light tuple.
+    pub lights: String,
+    /// The light tuple's type.
+    pub lights_type: String,
+    /// `InfiniteViewer` or `LocalViewer`.
+    pub viewer: &'static str,
+    /// `Flat`, `Gouraud` or `PhongShading`.
+    pub shading: &'static str,
+    /// `RenderOptions { .. }`.
+    pub options: String,
+    /// Global ambient.
+    pub ambient: String,
+    /// Background, raw RGB565.
+    pub background: u16,
+    /// Whether the scene has a depth test.
+    pub depth: bool,
+    /// Vertex count.
+    pub vertices: usize,
+}
+
+/// Converts a scene as `KernelScene::new` and `KernelScene::render` do.
+pub fn setup(d: &SceneDesc) -> Setup {
+    let c = &d.camera;
+    let projection = match c.projection {
+        scene_desc::Projection::Perspective { fovy_deg } => format!(
+            "Projection::Perspective {{ fovy_deg: f32::from_bits({:#x}) }}",
+            (fovy_deg as f32).to_bits()
+        ),
+        scene_desc::Projection::Orthographic { height } => format!(
+            "Projection::Orthographic {{ height: f32::from_bits({:#x}) }}",
+            (height as f32).to_bits()
+        ),
+    };
+    let view = Camera::look_at_f64(c.eye, c.target, c.up)
+        .expect("camera")
+        .view;
+    let camera = format!(
+        "Camera {{ view: {}, projection: {projection}, near: f32::from_bits({:#x}), far: f32::from_bits({:#x}) }}",
+        mat4(&view),
+        (c.near as f32).to_bits(),
+        (c.far as f32).to_bits()
+    );
+    let model = mat4(&Mat4::from_f64(d.model).expect("model"));
+    let m = &d.material;
+    let mut material = format!(
+        "Material::new().with_emission({}).with_ambient({}).with_diffuse({})",
+        rgb(m.emission),
+        rgb(m.ambient),
+        rgb(m.diffuse)
+    );
+    if !Rgb::from_f64(m.specular).expect("specular").is_black() {
+        let kind = match d.specular_model {
+            SpecularModel::Blinn => "BlinnPhong",
+            SpecularModel::Phong => "Phong",
+        };
+        let n = Exponent::from_f64(m.shininess)
+            .expect("shininess")
+            .to_bits();
+        let _ = write!(
+            material,
+            ".with_specular({kind} {{ color: {}, shininess: Exponent::from_bits({n}) }})",
+            rgb(m.specular)
+        );
+    }
+    let lights: Vec<(String, &str)> = d.lights.iter().map(light).collect();
+    let bg = Shade::from_bits(
+        (d.background[0].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+        (d.background[1].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+        (d.background[2].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
+    )
+    .to_rgb565();
+    use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
+    Setup {
+        camera,
+        model,
+        material,
+        lights: format!(
+            "({})",
+            lights.iter().map(|l| l.0.clone() + ",").collect::<String>()
+        ),
+        lights_type: format!(
+            "({})",
+            lights
+                .iter()
+                .map(|l| l.1.to_string() + ",")
+                .collect::<String>()
+        ),
+        viewer: match d.viewer {
+            scene_desc::Viewer::Infinite => "InfiniteViewer",
+            scene_desc::Viewer::Local => "LocalViewer",
+        },
+        shading: match d.shading {
+            Shading::Flat => "Flat",
+            Shading::Gouraud => "Gouraud",
+            Shading::Phong => "PhongShading",
+        },
+        options: format!(
+            "RenderOptions {{ cull: {}, two_sided: {}, dither: {} }}",
+            d.cull, d.two_sided, d.dither
+        ),
+        ambient: rgb(d.global_ambient),
+        background: RawU16::from(bg).into_inner(),
+        depth: d.depth,
+        vertices: d.mesh.positions.len(),
+    }
+}
+
+/// The `use` lines the generated source needs.
+pub const PRELUDE: &str = "#[allow(unused_imports)]
+use fixed::types::U32F32;
+#[allow(unused_imports)]
+use fixshade::camera::{Camera, Projection};
+#[allow(unused_imports)]
+use fixshade::illumination::{InfiniteViewer, LocalViewer};
+#[allow(unused_imports)]
+use fixshade::light::{Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight, WidePoint};
+#[allow(unused_imports)]
+use fixshade::material::{BlinnPhong, Phong};
+#[allow(unused_imports)]
+use fixshade::render::{Flat, Gouraud, PhongShading, RenderOptions};
+#[allow(unused_imports)]
+use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
+";

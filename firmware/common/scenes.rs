@@ -1,0 +1,68 @@
+//! The scenes the firmware renders, shared by the device's code generator
+//! (`firmware/qemu/build.rs`) and the host's reference renderer
+//! (`firmware/host`): the standard scenes S1 to S4 at 320 × 240 in their own
+//! shading mode, and each again in the two other shading modes.
+
+use fixshade::scene_desc::{SceneDesc, Shading};
+use fixshade::standard_scenes;
+
+/// One frame the firmware renders.
+pub struct Variant {
+    /// File name stem (`s1_gouraud` → `s1_gouraud.bin`) and function name.
+    pub name: String,
+    /// Which mesh (variants of a scene share it).
+    pub mesh: &'static str,
+    /// The scene.
+    pub desc: SceneDesc,
+}
+
+/// Every frame, standard ones (the scene's own shading mode) first.
+pub fn variants() -> Vec<Variant> {
+    let (w, h) = (standard_scenes::WIDTH, standard_scenes::HEIGHT);
+    let scenes = [
+        ("s1", "sphere48", standard_scenes::s1(w, h)),
+        ("s2", "quad", standard_scenes::s2(w, h)),
+        ("s3", "sphere192", standard_scenes::s3(w, h)),
+        ("s4", "bunny", standard_scenes::s4(w, h)),
+    ];
+    let name = |s: Shading| match s {
+        Shading::Flat => "flat",
+        Shading::Gouraud => "gouraud",
+        Shading::Phong => "phong",
+    };
+    let mut out = Vec::new();
+    for (id, mesh, desc) in &scenes {
+        out.push(Variant {
+            name: format!("{id}_{}", name(desc.shading)),
+            mesh,
+            desc: desc.clone(),
+        });
+    }
+    for (id, mesh, desc) in &scenes {
+        for s in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+            if s != desc.shading {
+                let mut d = desc.clone();
+                d.shading = s;
+                out.push(Variant {
+                    name: format!("{id}_{}", name(s)),
+                    mesh,
+                    desc: d,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// What the Cortex-M0 firmware (firmware/microbit, 16 KB of RAM) renders:
+/// S1's scene with a sphere of 8 × 4 segments, whose 45-vertex cache
+/// (4.7 KB) fits beside a band of rows. S1's own 1225 vertices need a
+/// 127 KB cache.
+pub fn m0_variants() -> Vec<Variant> {
+    let (w, h) = (standard_scenes::WIDTH, standard_scenes::HEIGHT);
+    vec![Variant {
+        name: "m0_sphere8_gouraud".into(),
+        mesh: "sphere8",
+        desc: standard_scenes::sphere_scene(w, h, 8, 4),
+    }]
+}

@@ -1,0 +1,373 @@
+//! `--report RAW_DIR REPORT_DIR`: turns what scripts/firmware.sh collected
+//! (console lines, plugin counts, `arm-none-eabi-size -A` output) into
+//! `REPORT_DIR/firmware_counts.json` and `REPORT_DIR/firmware.md`.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::fs;
+use std::path::Path;
+
+/// Cycles per instruction assumed for the estimates (see `ESTIMATE_BASIS`).
+const CPI_M4: f64 = 1.3;
+const CPI_M0: f64 = 1.4;
+const MHZ_F4: f64 = 168.0;
+const MHZ_RP2040: f64 = 133.0;
+
+const ESTIMATE_BASIS: &str = "Cycles are estimates, not measurements: instructions × an assumed \
+average of 1.3 cycles per instruction on the Cortex-M4 (most data-processing instructions and \
+multiplies 1 cycle, loads 2 unless pipelined, taken branches 2–4; code assumed to hit the \
+STM32F4's ART flash cache) and 1.4 on the RP2040's Cortex-M0+ (loads, stores and taken \
+branches 2 cycles, the single-cycle multiplier; code from SRAM or hitting the XIP cache). \
+The M0+ counts are of thumbv6m code whose divisions are software `__aeabi_uidiv` calls; \
+on an RP2040 the HAL's hardware-divider intrinsics make those cheaper.";
+
+const TARGETS: [(&str, &str); 2] = [
+    ("thumbv7em-none-eabihf", "Cortex-M4F"),
+    ("thumbv6m-none-eabi", "Cortex-M0+"),
+];
+
+const LEVELS: [(&str, &str); 8] = [
+    ("none", "runtime only (no render call)"),
+    (
+        "ambient",
+        "ambient only (`()` lights, `NoSpecular`, Gouraud, `NoDepth`)",
+    ),
+    ("lambert", "+ Lambert (one `DirectionalLight`)"),
+    ("specular", "+ directional specular (`BlinnPhong`)"),
+    ("point", "+ point light with attenuation"),
+    ("spot", "+ spot light"),
+    ("depth", "+ depth buffer (`DepthBuffer`)"),
+    ("phong", "+ Phong shading (`PhongShading`)"),
+];
+
+/// `key=value` pairs of a console line.
+fn fields(line: &str) -> BTreeMap<String, String> {
+    line.split_whitespace()
+        .filter_map(|w| w.split_once('='))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
+fn num(m: &BTreeMap<String, String>, k: &str) -> Result<u64, String> {
+    m.get(k)
+        .ok_or_else(|| format!("missing {k}"))?
+        .parse()
+        .map_err(|e| format!("{k}: {e}"))
+}
+
+fn read(p: &Path) -> Result<String, String> {
+    fs::read_to_string(p).map_err(|e| format!("{}: {e}", p.display()))
+}
+
+fn counts(p: &Path) -> Result<Vec<u64>, String> {
+    read(p)?
+        .lines()
+        .map(|l| {
+            l.trim()
+                .parse()
+                .map_err(|e| format!("{}: {e}", p.display()))
+        })
+        .collect()
+}
+
+struct Frame {
+    name: String,
+    triangles: u64,
+    drawn: u64,
+    pixels: u64,
+    vertices: u64,
+    instructions: u64,
+    stack: u64,
+}
+
+fn frames(dir: &Path) -> Result<Vec<Frame>, String> {
+    let log = read(&dir.join("console.log"))?;
+    let c = counts(&dir.join("counts.txt"))?;
+    let lines: Vec<&str> = log.lines().filter(|l| l.starts_with("frame ")).collect();
+    if lines.len() != c.len() {
+        return Err(format!(
+            "{}: {} frames, {} counts",
+            dir.display(),
+            lines.len(),
+            c.len()
+        ));
+    }
+    lines
+        .iter()
+        .zip(c)
+        .map(|(l, n)| {
+            let f = fields(l);
+            Ok(Frame {
+                name: l.split_whitespace().nth(1).unwrap_or("?").to_string(),
+                triangles: num(&f, "triangles")?,
+                drawn: num(&f, "drawn")?,
+                pixels: num(&f, "pixels")?,
+                vertices: num(&f, "vertices")?,
+                instructions: n,
+                stack: num(&f, "stack")?,
+            })
+        })
+        .collect()
+}
+
+struct Config {
+    text: u64,
+    rodata: u64,
+    bss: u64,
+    stack: u64,
+    instructions: Option<u64>,
+    pixels: u64,
+}
+
+fn section(size: &str, name: &str) -> u64 {
+    size.lines()
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            (w.next() == Some(name)).then(|| w.next()?.parse().ok())?
+        })
+        .next()
+        .unwrap_or(0)
+}
+
+fn config(dir: &Path) -> Result<Config, String> {
+    let size = read(&dir.join("size.txt"))?;
+    let log = read(&dir.join("console.log"))?;
+    let f = fields(
+        log.lines()
+            .find(|l| l.starts_with("config"))
+            .ok_or("no config line")?,
+    );
+    let instructions = match counts(&dir.join("counts.txt")) {
+        Ok(c) => c.first().copied(),
+        Err(_) => None,
+    };
+    Ok(Config {
+        text: section(&size, ".text") + section(&size, ".vector_table"),
+        rodata: section(&size, ".rodata"),
+        bss: section(&size, ".bss") + section(&size, ".data"),
+        stack: num(&f, "stack")?,
+        instructions,
+        pixels: num(&f, "pixels")?,
+    })
+}
+
+fn ms(instr: u64, cpi: f64, mhz: f64) -> f64 {
+    instr as f64 * cpi / (mhz * 1000.0)
+}
+
+fn per(a: u64, b: u64) -> f64 {
+    if b == 0 {
+        0.0
+    } else {
+        a as f64 / b as f64
+    }
+}
+
+/// Writes the report files.
+pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
+    let m4 = frames(&raw.join(TARGETS[0].0))?;
+    let m0 = frames(&raw.join(TARGETS[1].0))?;
+    let mut md = String::new();
+    let mut js = String::from("{\n");
+    let _ = writeln!(
+        md,
+        "# fixshade on Cortex-M: instructions, flash, RAM, stack\n\n\
+         Written by `scripts/firmware.sh` (issue 8). Instructions are counted by the QEMU plugin \
+         `firmware/plugin/insn_count.c` between the markers around each render call \
+         (`Renderer::new` and `draw_framebuffer`, callees included; clearing the frame and \
+         depth buffer is not counted), 320 × 240, whole-frame buffer. \"M0+\" counts are of the \
+         thumbv6m build, run on QEMU's mps2-an386 (its M4 core executes Thumb-1 code unchanged). \
+         Every frame is byte-identical to the host's.\n\n{ESTIMATE_BASIS}\n"
+    );
+    let _ = writeln!(
+        md,
+        "| scene | shading | triangles | rasterized | pixels | M4 instr/frame | M4 /triangle | M4 /pixel | M0+ instr/frame | M0+ /triangle | M0+ /pixel | STM32F4 168 MHz (est.) | RP2040 133 MHz (est.) | stack M4 / M0+ |\n\
+         | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    );
+    js.push_str("  \"frames\": [\n");
+    let mut sorted: Vec<(&Frame, &Frame)> = m4.iter().zip(&m0).collect();
+    sorted.sort_by(|a, b| a.0.name.cmp(&b.0.name));
+    for (i, (a, b)) in sorted.iter().enumerate() {
+        let (scene, mode) = a.name.split_once('_').unwrap_or((&a.name, ""));
+        let std = matches!(
+            a.name.as_str(),
+            "s1_gouraud" | "s2_gouraud" | "s3_gouraud" | "s4_phong"
+        );
+        let _ = writeln!(
+            md,
+            "| {}{} | {mode} | {} | {} | {} | {} | {:.0} | {:.1} | {} | {:.0} | {:.1} | {:.2} ms | {:.2} ms | {} / {} B |",
+            scene.to_uppercase(),
+            if std { "" } else { "′" },
+            a.triangles,
+            a.drawn,
+            a.pixels,
+            a.instructions,
+            per(a.instructions, a.triangles),
+            per(a.instructions, a.pixels),
+            b.instructions,
+            per(b.instructions, b.triangles),
+            per(b.instructions, b.pixels),
+            ms(a.instructions, CPI_M4, MHZ_F4),
+            ms(b.instructions, CPI_M0, MHZ_RP2040),
+            a.stack,
+            b.stack
+        );
+        let _ = writeln!(
+            js,
+            "    {{\"name\": \"{}\", \"scene\": \"{}\", \"shading\": \"{mode}\", \"standard\": {std}, \"vertices\": {}, \"triangles\": {}, \"rasterized\": {}, \"pixels\": {}, \
+             \"m4_instructions\": {}, \"m0plus_instructions\": {}, \"m4_stack_bytes\": {}, \"m0plus_stack_bytes\": {}, \
+             \"stm32f4_168mhz_ms_estimate\": {:.3}, \"rp2040_133mhz_ms_estimate\": {:.3}}}{}",
+            a.name,
+            scene.to_uppercase(),
+            a.vertices,
+            a.triangles,
+            a.drawn,
+            a.pixels,
+            a.instructions,
+            b.instructions,
+            a.stack,
+            b.stack,
+            ms(a.instructions, CPI_M4, MHZ_F4),
+            ms(b.instructions, CPI_M0, MHZ_RP2040),
+            if i + 1 < sorted.len() { "," } else { "" }
+        );
+    }
+    js.push_str("  ],\n");
+    let _ = writeln!(
+        md,
+        "\nS1–S4 in their own shading mode; ′: the same scene in another mode.\n"
+    );
+
+    let find = |v: &[Frame], n: &str| v.iter().find(|f| f.name == n).map(|f| f.instructions);
+    let s2 = find(&m4, "s2_gouraud").ok_or("no s2_gouraud")?;
+    let s1m0 = find(&m0, "s1_gouraud").ok_or("no s1_gouraud")?;
+    let _ =
+        writeln!(
+        md,
+        "Targets: the Gouraud fill on the M4, S2 (a full-screen Gouraud quad, no depth) / 76 800 \
+         pixels = **{:.2}** instructions per pixel (target ≤ 6: {}); S1 on the M0+: **{}** \
+         instructions per frame (target ≤ 870 000: {}).\n",
+        s2 as f64 / 76800.0,
+        if s2 as f64 / 76800.0 <= 6.0 { "met" } else { "not met" },
+        s1m0,
+        if s1m0 <= 870_000 { "met" } else { "not met" }
+    );
+    let _ = writeln!(
+        js,
+        "  \"cpi_assumed\": {{\"cortex_m4\": {CPI_M4}, \"cortex_m0plus\": {CPI_M0}}},\n  \"s2_m4_instructions_per_pixel\": {:.3},\n  \"s1_m0plus_instructions\": {s1m0},",
+        s2 as f64 / 76800.0
+    );
+
+    let mb = raw.join("microbit");
+    let m0_log = read(&mb.join("console.log"))?;
+    let m0 = fields(
+        m0_log
+            .lines()
+            .find(|l| l.starts_with("m0 "))
+            .ok_or("no m0 line")?,
+    );
+    let m0_count: u64 = counts(&mb.join("counts.txt"))?.iter().sum();
+    let m0_size = read(&mb.join("size.txt"))?;
+    let _ = writeln!(
+        md,
+        "## Cortex-M0, 16 KB of RAM (QEMU `microbit`)\n\n\
+         firmware/microbit renders S1's scene with an 8 × 4 sphere (45 vertices: a 4.7 KB vertex \
+         cache; S1's 1225 vertices would need 127 KB) at 320 × 240 in {} bands of {} rows, each \
+         written to the host as it is done; the frame is byte-identical to the host's. Until the \
+         band renderer of issue 7 exists, each band re-renders the whole mesh into a band target \
+         with a depth test that rejects rows outside the band: {} instructions for the {} bands \
+         ({} pixels), not a per-frame cost. .text {} B, .rodata {} B, .bss {} B (band, depth band, \
+         vertex cache), stack high-water {} B, {} B of RAM never touched.\n",
+        num(&m0, "bands")?,
+        num(&m0, "rows")?,
+        m0_count,
+        num(&m0, "bands")?,
+        num(&m0, "pixels")?,
+        section(&m0_size, ".text") + section(&m0_size, ".vector_table"),
+        section(&m0_size, ".rodata"),
+        section(&m0_size, ".bss"),
+        num(&m0, "stack")?,
+        num(&m0, "free")?
+    );
+    let _ = writeln!(
+        js,
+        "  \"microbit_m0\": {{\"bands\": {}, \"instructions_all_bands\": {m0_count}, \"stack\": {}, \"bss\": {}}},",
+        num(&m0, "bands")?,
+        num(&m0, "stack")?,
+        section(&m0_size, ".bss")
+    );
+    let _ = writeln!(
+        md,
+        "## Where the instructions go\n\n\
+         `scripts/firmware_profile.sh TARGET FRAME`: per linked function (callees not included), \
+         then per innermost function including inlined ones. Frame 0 is S1, frame 1 is S2.\n"
+    );
+    for (t, core) in TARGETS {
+        for n in 0..2 {
+            if let Ok(p) = read(&raw.join(t).join(format!("profile_{n}.txt"))) {
+                let _ = writeln!(md, "{core}, {}:\n\n```text\n{}```\n", ["S1", "S2"][n], p);
+            }
+        }
+    }
+    js.push_str("  \"configurations\": {\n");
+    let _ = writeln!(
+        md,
+        "## Flash and RAM per scene configuration\n\n\
+         `src/bin/config.rs` in firmware/qemu: S1's sphere (1225 vertices, 2208 triangles), \
+         each row adding one term to the row above. Bytes from `arm-none-eabi-size -A`; \
+         .text includes the vector table; .rodata includes the mesh (35 298 bytes); .bss holds \
+         the 320 × 240 frame (153 600), the vertex cache (1225 × 104 = 127 400) and, from \
+         \"depth\" on, the depth buffer (153 600). Stack: high-water mark of the render call \
+         (painted, rendered, scanned). Instructions: the render call.\n"
+    );
+    for (ti, (t, core)) in TARGETS.iter().enumerate() {
+        let _ = writeln!(
+            md,
+            "### {core} (`{t}`)\n\n| configuration | .text | Δ .text | .rodata | Δ .rodata | .bss | stack | instructions | pixels |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+        );
+        let _ = writeln!(js, "    \"{t}\": [");
+        let mut prev: Option<Config> = None;
+        for (li, (level, what)) in LEVELS.iter().enumerate() {
+            let c = config(&raw.join("config").join(t).join(level))?;
+            let (dt, dr) = match &prev {
+                Some(p) => (
+                    format!("{:+}", c.text as i64 - p.text as i64),
+                    format!("{:+}", c.rodata as i64 - p.rodata as i64),
+                ),
+                None => (String::new(), String::new()),
+            };
+            let _ = writeln!(
+                md,
+                "| {what} | {} | {dt} | {} | {dr} | {} | {} B | {} | {} |",
+                c.text,
+                c.rodata,
+                c.bss,
+                c.stack,
+                c.instructions.map(|n| n.to_string()).unwrap_or_default(),
+                c.pixels
+            );
+            let _ = writeln!(
+                js,
+                "      {{\"level\": \"{level}\", \"text\": {}, \"rodata\": {}, \"bss\": {}, \"stack\": {}, \"instructions\": {}}}{}",
+                c.text,
+                c.rodata,
+                c.bss,
+                c.stack,
+                c.instructions.map(|n| n.to_string()).unwrap_or("null".into()),
+                if li + 1 < LEVELS.len() { "," } else { "" }
+            );
+            prev = Some(c);
+        }
+        let _ = writeln!(js, "    ]{}", if ti + 1 < TARGETS.len() { "," } else { "" });
+        md.push('\n');
+    }
+    js.push_str("  }\n}\n");
+    fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    fs::write(out.join("firmware_counts.json"), js).map_err(|e| e.to_string())?;
+    fs::write(out.join("firmware.md"), md).map_err(|e| e.to_string())?;
+    println!(
+        "wrote {0}/firmware_counts.json and {0}/firmware.md",
+        out.display()
+    );
+    Ok(())
+}
