@@ -14,7 +14,8 @@
 //! the span (checked at the span's two ends; values are linear in between),
 //! so modular addition of the packed step gives exactly the packed values.
 //! The RGB565 pixel is then `((acc & MASK) · K) >> 48`: the mask keeps the
-//! three integer parts, and `K = 1 + 2¹⁶ + 2³²` moves green and blue next to
+//! three integer parts, and `K = 1 + 2¹⁶ + 2³²` (as shifts and adds: no 64-bit multiply on a
+//! Cortex-M0) moves green and blue next to
 //! red in bits 48–63 without carries (the six shifted fields are disjoint).
 //! Per pixel: add, and, multiply, shift, store.
 
@@ -238,7 +239,13 @@ pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
 }
 
 const PACK_MASK: u64 = (31 << 59) | (63 << 37) | (31 << 16);
-const PACK_K: u64 = 1 + (1 << 16) + (1 << 32);
+/// `x · (1 + 2¹⁶ + 2³²)` as shifts and adds: the same bits as the multiply
+/// (modulo 2⁶⁴), but no 64-bit multiply, which is a library call on a
+/// Cortex-M0.
+#[inline(always)]
+fn gather(x: u64) -> u64 {
+    x.wrapping_add(x << 16).wrapping_add(x << 32)
+}
 
 /// Gouraud colours stepped in one packed `u64` (see the module docs).
 pub struct PackedGouraud {
@@ -278,7 +285,7 @@ impl PackedGouraud {
 impl SpanShader for PackedGouraud {
     #[inline(always)]
     fn next(&mut self) -> u16 {
-        let p = ((self.acc & PACK_MASK).wrapping_mul(PACK_K) >> 48) as u16;
+        let p = (gather(self.acc & PACK_MASK) >> 48) as u16;
         self.acc = self.acc.wrapping_add(self.step);
         p
     }
@@ -296,7 +303,7 @@ impl SpanShader for PackedGouraud {
             self.step.wrapping_mul(3),
             self.step.wrapping_mul(4),
         );
-        let px = |a: u64| ((a & PACK_MASK).wrapping_mul(PACK_K) >> 48) as u16;
+        let px = |a: u64| (gather(a & PACK_MASK) >> 48) as u16;
         let mut chunks = row.chunks_exact_mut(4);
         for c in &mut chunks {
             let a = self.acc;
