@@ -13,11 +13,9 @@
 //! value is `Σ vᵢ·2^offᵢ` with every `vᵢ` inside its field at every pixel of
 //! the span (checked at the span's two ends; values are linear in between),
 //! so modular addition of the packed step gives exactly the packed values.
-//! The RGB565 pixel is then `((acc & MASK) · K) >> 48`: the mask keeps the
-//! three integer parts, and `K = 1 + 2¹⁶ + 2³²` (as shifts and adds: no 64-bit multiply on a
-//! Cortex-M0) moves green and blue next to
-//! red in bits 48–63 without carries (the six shifted fields are disjoint).
-//! Per pixel: add, and, multiply, shift, store.
+//! The RGB565 pixel is then made from the accumulator's two 32-bit halves
+//! with three masks, two shifts and two ors (`pixel_of`), no 64-bit
+//! multiply: per pixel a 64-bit add, those seven operations and a store.
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -238,13 +236,16 @@ pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
     pack565(q(b[0], 31), q(b[1], 63), q(b[2], 31))
 }
 
-const PACK_MASK: u64 = (31 << 59) | (63 << 37) | (31 << 16);
-/// `x · (1 + 2¹⁶ + 2³²)` as shifts and adds: the same bits as the multiply
-/// (modulo 2⁶⁴), but no 64-bit multiply, which is a library call on a
-/// Cortex-M0.
+/// The RGB565 pixel of a packed accumulator: red's integer part is bits
+/// 59–63, green's 37–42, blue's 16–20 (see the module docs), so with
+/// `hi`/`lo` the accumulator's 32-bit halves the pixel is
+/// `((hi >> 16) & 0xF800) | (hi & 0x07E0) | ((lo >> 16) & 0x1F)`: 32-bit
+/// operations only (a 64-bit multiply is a library call on a Cortex-M0, and
+/// shifts-and-adds by `1 + 2¹⁶ + 2³²` get folded back into one).
 #[inline(always)]
-fn gather(x: u64) -> u64 {
-    x.wrapping_add(x << 16).wrapping_add(x << 32)
+fn pixel_of(acc: u64) -> u16 {
+    let (hi, lo) = ((acc >> 32) as u32, acc as u32);
+    (((hi >> 16) & 0xF800) | (hi & 0x07E0) | ((lo >> 16) & 0x1F)) as u16
 }
 
 /// Gouraud colours stepped in one packed `u64` (see the module docs).
@@ -285,7 +286,7 @@ impl PackedGouraud {
 impl SpanShader for PackedGouraud {
     #[inline(always)]
     fn next(&mut self) -> u16 {
-        let p = (gather(self.acc & PACK_MASK) >> 48) as u16;
+        let p = pixel_of(self.acc);
         self.acc = self.acc.wrapping_add(self.step);
         p
     }
@@ -303,7 +304,7 @@ impl SpanShader for PackedGouraud {
             self.step.wrapping_mul(3),
             self.step.wrapping_mul(4),
         );
-        let px = |a: u64| (gather(a & PACK_MASK) >> 48) as u16;
+        let px = pixel_of;
         let mut chunks = row.chunks_exact_mut(4);
         for c in &mut chunks {
             let a = self.acc;
