@@ -480,8 +480,25 @@ impl DrawTarget for CoverageTarget<'_, '_> {
     }
 }
 
-/// Where [`KernelScene`] draws: a `DrawTarget` or a framebuffer.
+/// Where [`KernelScene`] draws: a whole-frame [`FrameDrawer`], or the band
+/// renderer.
 trait Drawer {
+    type Error;
+    /// Draws with a cleared depth buffer over `depth` if `has_depth`.
+    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        r: &Renderer<S, V, L>,
+        mesh: &Mesh,
+        size: Size,
+        depth: &mut [u16],
+        has_depth: bool,
+        cache: &mut [CachedVertex],
+    ) -> Result<DrawStats, RenderError<Self::Error>>;
+}
+
+/// A whole-frame output (a `DrawTarget`, or a framebuffer written in
+/// place): one draw call with a depth test of type `D`.
+trait FrameDrawer {
     type Error;
     fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
         &mut self,
@@ -490,8 +507,10 @@ trait Drawer {
         depth: &mut D,
         cache: &mut [CachedVertex],
     ) -> Result<DrawStats, RenderError<Self::Error>>;
+}
 
-    /// Draws with a cleared depth buffer over `depth` if `has_depth`.
+impl<F: FrameDrawer> Drawer for F {
+    type Error = F::Error;
     fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
         &mut self,
         r: &Renderer<S, V, L>,
@@ -521,16 +540,6 @@ struct BandDrawer<'t, 'b, 'c, T> {
 
 impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, T> {
     type Error = T::Error;
-    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
-        &mut self,
-        _: &Renderer<S, V, L>,
-        _: &Mesh,
-        _: &mut D,
-        _: &mut [CachedVertex],
-    ) -> Result<DrawStats, RenderError<Self::Error>> {
-        unreachable!("the band drawer draws through draw_scene")
-    }
-
     fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
         &mut self,
         r: &Renderer<S, V, L>,
@@ -558,7 +567,7 @@ impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, T> {
 
 struct TargetDrawer<'t, T>(&'t mut T);
 
-impl<T: DrawTarget<Color = Rgb565>> Drawer for TargetDrawer<'_, T> {
+impl<T: DrawTarget<Color = Rgb565>> FrameDrawer for TargetDrawer<'_, T> {
     type Error = T::Error;
     fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
         &mut self,
@@ -573,7 +582,7 @@ impl<T: DrawTarget<Color = Rgb565>> Drawer for TargetDrawer<'_, T> {
 
 struct FbDrawer<'t, 'a>(&'t mut Framebuffer<'a>);
 
-impl Drawer for FbDrawer<'_, '_> {
+impl FrameDrawer for FbDrawer<'_, '_> {
     type Error = core::convert::Infallible;
     fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
         &mut self,
