@@ -41,9 +41,9 @@ awk -F'\t' -v t="$total" "$HEX"' NR == FNR { addr[NR] = $1 + 0; name[NR] = $2; n
       lo = 1; hi = n; while (lo < hi) { mid = int((lo + hi + 1) / 2); if (addr[mid] <= pc) lo = mid; else hi = mid - 1 }
       s[name[lo]] += f[2] }
     END { for (k in s) printf "%10d %5.1f%%  %s\n", s[k], 100 * s[k] / t, k }' "$work/syms.txt" "$work/byaddr.txt" \
-    | sort -rn | head -n "$L"
+    | sort -rn | awk -v l="$L" 'NR <= l'
 echo "-- per innermost (inlined) function"
 paste -d' ' "$work/byaddr.txt" "$work/fn.txt" \
     | awk -v t="$total" '{ n = $2; $1 = ""; $2 = ""; sub(/^  /, ""); s[$0] += n }
         END { for (f in s) printf "%10d %5.1f%%  %s\n", s[f], 100 * s[f] / t, f }' \
-    | sort -rn | head -n "$L"
+    | sort -rn | awk -v l="$L" 'NR <= l'
