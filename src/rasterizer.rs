@@ -17,9 +17,11 @@
 //! directions, so exactly one of them owns each sample on it.
 //!
 //! # Spans
-//! Per row, each edge bounds the span on one side; the bound is found by an
-//! exact integer division (floor or ceiling), so the span is exact. The
-//! span is clipped to the caller's rectangle (the target's bounds).
+//! Per row, one edge of the left chain and one of the right chain bound
+//! the span (the chain with two edges switches at the middle vertex's
+//! row); each bound is an exact integer division (floor or ceiling) kept
+//! row to row as a quotient and remainder, so the span is exact. The span
+//! is clipped to the caller's rectangle (the target's bounds).
 //!
 //! # Attributes
 //! Each attribute (depth, colour, normal, position; scaled by the caller)
@@ -97,22 +99,16 @@ pub fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
 /// For edge `a → b` and row sample `ys`, `E(px) = K − dy·px` with
 /// `K = dx·(ys − a.y) + dy·a.x`. The columns it admits are
 /// `x ≥ ⌈(−K − 8m)/(16m)⌉` for `dy = −m < 0` (top-left: `E ≥ 0`) and
-/// `x ≤ ⌊(K − 8dy − [not top-left])/(16dy)⌋` for `dy > 0` (`E > 0`, i.e.
-/// `E ≥ 1`; such an edge is never top-left). The two nested divisions of
-/// `px = 16x + 8` fold into one (`⌈⌈a/m⌉/16⌉ = ⌈a/16m⌉`). From row to row
-/// the numerator moves by a constant, so the quotient is kept with its
-/// remainder (a DDA): exact, two divisions per edge per triangle.
+/// `x ≤ ⌊(K − 8dy − 1)/(16dy)⌋` for `dy > 0` (`E > 0`, i.e. `E ≥ 1`;
+/// such an edge is never top-left). The two nested divisions of
+/// `px = 16x + 8` fold into one (`⌈⌈a/m⌉/16⌉ = ⌈a/16m⌉`), and a ceiling is
+/// the floor of the numerator plus `den − 1`. From row to row the numerator
+/// moves by a constant, so the quotient is kept with its remainder (a DDA):
+/// exact, two divisions per edge.
 #[derive(Clone, Copy, Debug)]
 struct Edge {
-    /// 0: horizontal, 1: bounds from the left (x ≥ q or q + 1), 2: bounds
-    /// from the right (x ≤ q).
-    kind: u8,
-    /// Whether the edge is top or left (decides samples exactly on it).
-    top_left: bool,
-    /// Horizontal edges: `K` of the current row and its step.
-    k: i64,
-    dk: i64,
-    /// Quotient and remainder of the current row's bound, `0 ≤ r < den`.
+    /// The bound on the current row (first or last column admitted), and
+    /// the remainder of its division, `0 ≤ r < den`.
     q: i64,
     r: i64,
     /// Per-row step of quotient and remainder.
@@ -121,69 +117,43 @@ struct Edge {
     den: i64,
 }
 
-impl Edge {
-    /// The edge `a → b` starting at row sample `ys`.
-    fn new(a: (i64, i64), b: (i64, i64), ys: i64) -> Edge {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let top_left = dy < 0 || (dy == 0 && dx > 0);
+/// An edge that is not horizontal, before it is placed on a row.
+#[derive(Clone, Copy, Debug)]
+struct EdgeLine {
+    a: (i64, i64),
+    dx: i64,
+    dy: i64,
+}
+
+impl EdgeLine {
+    /// The DDA of this edge's bound starting at row sample `ys`.
+    fn at(self, ys: i64) -> Edge {
+        let EdgeLine { a, dx, dy } = self;
         // |K| < 2^59 (coordinates within ±2^28).
         let k = dx * (ys - a.1) + dy * a.0;
-        let dk = 16 * dx;
-        let mut e = Edge {
-            kind: 0,
-            top_left,
-            k,
-            dk,
-            q: 0,
-            r: 0,
-            dq: 0,
-            dr: 0,
-            den: 1,
-        };
-        if dy == 0 {
-            return e;
-        }
-        // Numerator N and its per-row step, so that the bound is ⌈N/den⌉
-        // (left) or ⌊N/den⌋ (right).
-        let (n, dn, den, kind) = if dy < 0 {
-            let m = -dy;
-            (-k - 8 * m, -dk, 16 * m, 1)
+        // Numerator N and its per-row step, so that the bound is ⌊N/den⌋.
+        let (n, dn, den) = if dy < 0 {
+            let den = -16 * dy;
+            (-k + 8 * dy + den - 1, -16 * dx, den)
         } else {
-            (k - 8 * dy - 1, dk, 16 * dy, 2)
+            (k - 8 * dy - 1, 16 * dx, 16 * dy)
         };
-        let (q, r) = (floor_div(n, den), n - floor_div(n, den) * den);
-        let (dq, dr) = (floor_div(dn, den), dn - floor_div(dn, den) * den);
-        e.kind = kind;
-        e.q = q;
-        e.r = r;
-        e.dq = dq;
-        e.dr = dr;
-        e.den = den;
-        e
-    }
-
-    /// Narrows `[lo, hi]` to the columns this edge admits on the current
-    /// row. Returns `false` if none.
-    #[inline(always)]
-    fn bound(&self, lo: &mut i64, hi: &mut i64) -> bool {
-        match self.kind {
-            0 => self.k > 0 || (self.k == 0 && self.top_left),
-            1 => {
-                // ⌈N/den⌉ = q + (r > 0).
-                *lo = (*lo).max(self.q + (self.r > 0) as i64);
-                true
-            }
-            _ => {
-                *hi = (*hi).min(self.q);
-                true
-            }
+        let q = floor_div(n, den);
+        let dq = floor_div(dn, den);
+        Edge {
+            q,
+            r: n - q * den,
+            dq,
+            dr: dn - dq * den,
+            den,
         }
     }
+}
 
+impl Edge {
     /// Moves to the next row.
     #[inline(always)]
     fn step(&mut self) {
-        self.k += self.dk;
         self.q += self.dq;
         self.r += self.dr;
         if self.r >= self.den {
@@ -248,7 +218,15 @@ impl Recip {
 /// attribute planes.
 #[derive(Clone, Copy, Debug)]
 pub struct Triangle<const N: usize> {
-    edges: [Edge; 3],
+    /// The edges bounding the current row from the left and the right.
+    left: Edge,
+    right: Edge,
+    /// The edge that takes over on one side at row `switch` (where the
+    /// triangle's middle vertex is passed; `i64::MAX` if never), and
+    /// whether it is the left one.
+    next: EdgeLine,
+    next_left: bool,
+    switch: i64,
     x_lo: i64,
     x_hi: i64,
     y_lo: i64,
@@ -381,7 +359,41 @@ impl<const N: usize> Triangle<N> {
         let y_lo = ((miny + 7) >> 4).max(clip.y0 as i64);
         let y_hi = ((maxy - 8) >> 4).min(clip.y1 as i64);
         // The rows drawn: the band's part of the viewport's rows.
-        let (r_lo, r_hi) = (y_lo.max(rows.0 as i64), y_hi.min(rows.1 as i64));
+        let (r_lo, mut r_hi) = (y_lo.max(rows.0 as i64), y_hi.min(rows.1 as i64));
+        // Sort the edges into the left chain (dy < 0: `E ≥ 0` admits the
+        // columns right of them) and the right chain (dy > 0). Within the
+        // triangle's rows, the row's span lies between the two chains: one
+        // chain is a single edge, the other two edges meeting at the middle
+        // vertex, and on a side with two edges the other edge's line never
+        // binds (the triangle is convex; on the middle vertex's own row both
+        // give the same bound, ties included, as both pass through it).
+        // A horizontal edge (`dy = 0`, at most one) bounds rows only: a top
+        // one (`dx > 0`, top-left) admits its own row, which the bounding
+        // box already starts at; a bottom one (`dx < 0`) excludes its row.
+        let mut lines = [EdgeLine {
+            a: (0, 0),
+            dx: 0,
+            dy: 0,
+        }; 3];
+        // Left edges fill `lines` from the front, right ones from the back.
+        let (mut nl, mut nr) = (0, 3);
+        for (a, b) in [(0, 1), (1, 2), (2, 0)] {
+            let line = EdgeLine {
+                a: (v[a].x, v[a].y),
+                dx: v[b].x - v[a].x,
+                dy: v[b].y - v[a].y,
+            };
+            if line.dy < 0 {
+                lines[nl] = line;
+                nl += 1;
+            } else if line.dy > 0 {
+                nr -= 1;
+                lines[nr] = line;
+            } else if line.dx < 0 {
+                // ys < a.y: 16r + 8 ≤ a.y − 1.
+                r_hi = r_hi.min((line.a.1 - 9) >> 4);
+            }
+        }
         if x_lo > x_hi || r_lo > r_hi {
             return None;
         }
@@ -389,11 +401,40 @@ impl<const N: usize> Triangle<N> {
         // remainder there are those the walk from `y_lo` reaches (both are
         // the exact floor of the same numerator).
         let ys0 = 16 * r_lo + 8;
-        let edges = [
-            Edge::new((v[0].x, v[0].y), (v[1].x, v[1].y), ys0),
-            Edge::new((v[1].x, v[1].y), (v[2].x, v[2].y), ys0),
-            Edge::new((v[2].x, v[2].y), (v[0].x, v[0].y), ys0),
-        ];
+        let (mut left, mut right) = (lines[0], lines[2]);
+        let (mut next, mut next_left, mut switch) = (lines[1], false, i64::MAX);
+        if nl == 2 || nr == 1 {
+            // Two edges on one side, `lines[1]` the second one. The upper
+            // one ends (left chain: starts; right chain: the edges run
+            // down) at the middle vertex.
+            let (e0, e1) = (lines[if nl == 2 { 0 } else { 2 }], lines[1]);
+            let top = |e: &EdgeLine| if e.dy < 0 { e.a.1 + e.dy } else { e.a.1 };
+            let (upper, lower) = if top(&e0) < top(&e1) {
+                (e0, e1)
+            } else {
+                (e1, e0)
+            };
+            let mid_y = if upper.dy < 0 {
+                upper.a.1
+            } else {
+                upper.a.1 + upper.dy
+            };
+            // The first row whose sample is at or below the middle vertex.
+            let r_mid = (mid_y + 7) >> 4;
+            let first = if r_lo < r_mid {
+                (next, switch) = (lower, r_mid);
+                upper
+            } else {
+                lower
+            };
+            next_left = nl == 2;
+            if next_left {
+                left = first;
+            } else {
+                right = first;
+            }
+        }
+        let (left, right) = (left.at(ys0), right.at(ys0));
         let r = Recip::new(a);
         // Sample at the origin pixel, relative to each vertex.
         let (sx, sy) = (16 * x_lo + 8, 16 * y_lo + 8);
@@ -410,20 +451,29 @@ impl<const N: usize> Triangle<N> {
             let d1 = v[1].attr[i] - v[0].attr[i];
             let d2 = v[2].attr[i] - v[0].attr[i];
             let (gx, gy) = if small {
-                // |d| < 2^34, coordinate differences < 2^12: below 2^47.
+                // |d| < 2^34, coordinate differences < 2^12: below 2^47;
+                // divided by an area of at least 1 and scaled by 16, the
+                // gradients stay below 2^51.
                 let nx = d1 * (v[2].y - v[0].y) + d2 * (v[0].y - v[1].y);
                 let ny = d1 * (v[0].x - v[2].x) + d2 * (v[1].x - v[0].x);
-                (r.div_i64(nx, SUBPIXEL_BITS), r.div_i64(ny, SUBPIXEL_BITS))
+                (
+                    r.div_i64(nx, SUBPIXEL_BITS) as i64,
+                    r.div_i64(ny, SUBPIXEL_BITS) as i64,
+                )
             } else {
                 // Below 2^65: i128.
                 let (d1, d2) = (d1 as i128, d2 as i128);
                 let nx = d1 * (v[2].y - v[0].y) as i128 + d2 * (v[0].y - v[1].y) as i128;
                 let ny = d1 * (v[0].x - v[2].x) as i128 + d2 * (v[1].x - v[0].x) as i128;
-                (r.div(nx, SUBPIXEL_BITS), r.div(ny, SUBPIXEL_BITS))
+                let steep = STEEP as i128;
+                (
+                    r.div(nx, SUBPIXEL_BITS).clamp(-2 * steep, 2 * steep) as i64,
+                    r.div(ny, SUBPIXEL_BITS).clamp(-2 * steep, 2 * steep) as i64,
+                )
             };
-            exact |= gx.unsigned_abs() > STEEP || gy.unsigned_abs() > STEEP;
-            ddx[i] = gx.clamp(-(STEEP as i128), STEEP as i128) as i64;
-            ddy[i] = gy.clamp(-(STEEP as i128), STEEP as i128) as i64;
+            exact |= gx.unsigned_abs() as u128 > STEEP || gy.unsigned_abs() as u128 > STEEP;
+            ddx[i] = gx.clamp(-(STEEP as i64), STEEP as i64);
+            ddy[i] = gy.clamp(-(STEEP as i64), STEEP as i64);
             origin[i] = if small && !exact {
                 // From vertex 0 along the gradients: the origin is within
                 // 256 px (4096 sub-pixels) of it, |gradient| ≤ 2^40, so the
@@ -446,7 +496,11 @@ impl<const N: usize> Triangle<N> {
             }
         }
         Some(Triangle {
-            edges,
+            left,
+            right,
+            next,
+            next_left,
+            switch,
             x_lo,
             x_hi,
             y_lo: r_lo,
@@ -465,12 +519,20 @@ impl<const N: usize> Triangle<N> {
     #[inline(always)]
     pub fn for_each_span(&self, mut f: impl FnMut(&Span<N>)) {
         let mut row = self.origin;
-        let mut edges = self.edges;
+        let (mut left, mut right) = (self.left, self.right);
         let mut y = self.y_lo;
         while y <= self.y_hi {
-            let (mut lo, mut hi) = (self.x_lo, self.x_hi);
-            let inside = edges.iter().all(|e| e.bound(&mut lo, &mut hi));
-            if inside && lo <= hi {
+            if y == self.switch {
+                let e = self.next.at(16 * y + 8);
+                if self.next_left {
+                    left = e;
+                } else {
+                    right = e;
+                }
+            }
+            let lo = left.q.max(self.x_lo);
+            let hi = right.q.min(self.x_hi);
+            if lo <= hi {
                 let mut start = row;
                 if self.exact {
                     let v = &self.verts;
@@ -499,9 +561,8 @@ impl<const N: usize> Triangle<N> {
                     *r += d;
                 }
             }
-            for e in edges.iter_mut() {
-                e.step();
-            }
+            left.step();
+            right.step();
             y += 1;
         }
     }
