@@ -31,9 +31,11 @@
 //! A frame's triangles are split into [`CHUNKS`] runs of consecutive
 //! triangles; a first pass records each run's rows (the union of its
 //! visible triangles' rows, or the whole viewport for one that crosses the
-//! near plane) in a table on the stack. A band visits only the runs whose
-//! rows it meets, and in them rejects a triangle by its rows before any
-//! set-up. Meshes whose consecutive triangles are close on screen (grids,
+//! near plane) in a table on the stack, and which of the run's first 32
+//! triangles can draw anything at all (a bit mask: back faces when
+//! culling, triangles without area, behind the eye or off-screen cannot).
+//! A band visits only the runs whose rows it meets, skips the masked-out
+//! triangles, and rejects the others by their rows before any set-up. Meshes whose consecutive triangles are close on screen (grids,
 //! spheres, most scanned meshes) make this cheap; the worst case is every
 //! triangle tested in every band.
 //!
@@ -41,7 +43,7 @@
 //! The caller provides the colour band (`W × h` `u16`), the depth band
 //! (`W × h` `u16`, if the scene has a depth test) and, in cached mode, one
 //! [`BandVertex`] per mesh vertex. A draw call keeps the run table
-//! ([`CHUNKS`] × 8 bytes) and a triangle's set-up on the stack.
+//! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack.
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -65,8 +67,8 @@ use crate::span::BandSink;
 use crate::vector::{Unit3, Vec3};
 
 /// How many runs of consecutive triangles a frame is split into for
-/// finding each band's triangles (a table of `CHUNKS × 8` bytes on the
-/// stack).
+/// finding each band's triangles (a table of `CHUNKS × 12` bytes on the
+/// stack: rows and a visibility mask per run).
 pub const CHUNKS: usize = 128;
 
 const B_INSIDE: u64 = 1 << 51;
@@ -459,6 +461,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         }
         let runs = Runs::new(mesh.indices.len());
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
+        // Bit j: triangle j of the run may draw (j ≥ 32: always visited).
+        let mut visible = [0u32; CHUNKS];
         for (t, tri) in mesh.indices.iter().enumerate() {
             let idx = tri.map(|i| i as usize);
             let rows = if X::CACHED {
@@ -473,8 +477,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                 visible_rows(&frame, &c, cull)
             };
             if let Some((lo, hi)) = rows {
-                let b = &mut bounds[t / runs.per];
+                let (r, j) = (t / runs.per, t % runs.per);
+                let b = &mut bounds[r];
                 *b = (b.0.min(lo), b.1.max(hi));
+                if j < 32 {
+                    visible[r] |= 1 << j;
+                }
             }
         }
         let w = size.width;
@@ -499,7 +507,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                     continue;
                 }
                 let end = ((r + 1) * runs.per).min(mesh.indices.len());
-                for tri in &mesh.indices[r * runs.per..end] {
+                for (j, tri) in mesh.indices[r * runs.per..end].iter().enumerate() {
+                    if j < 32 && visible[r] & (1 << j) == 0 {
+                        continue;
+                    }
                     let idx = tri.map(|i| i as usize);
                     let res = if X::CACHED {
                         band_triangle_cached::<M, _, _, _, _, _>(

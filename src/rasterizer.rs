@@ -177,7 +177,8 @@ fn floor_div(a: i64, b: i64) -> i64 {
 /// `1 / area` as a 32-bit mantissa and a shift: `1/a ≈ m / 2^sh`.
 #[derive(Clone, Copy, Debug)]
 struct Recip {
-    m: i128,
+    /// In `(2^31, 2^32]`.
+    m: i64,
     sh: u32,
 }
 
@@ -194,7 +195,7 @@ impl Recip {
         };
         // 1/a ≈ (2^63 / a32) · 2^−(63 + e); 2^63/a32 ∈ (2^31, 2^32].
         Recip {
-            m: ((1u64 << 63) / a32) as i128,
+            m: ((1u64 << 63) / a32) as i64,
             sh: (63 + e) as u32,
         }
     }
@@ -203,21 +204,21 @@ impl Recip {
     #[inline]
     fn div_i64(self, num: i64, up: u32) -> i128 {
         let sh = self.sh - up;
-        ((num as i128) * (self.m as i64 as i128) + (1i128 << (sh - 1))) >> sh
+        ((num as i128) * (self.m as i128) + (1i128 << (sh - 1))) >> sh
     }
 
     /// `round(num · 2^up / a)`; `|num| < 2⁹⁴` keeps the product below 2¹²⁶.
     #[inline]
     fn div(self, num: i128, up: u32) -> i128 {
         let sh = self.sh - up;
-        (num * self.m + (1i128 << (sh - 1))) >> sh
+        (num * self.m as i128 + (1i128 << (sh - 1))) >> sh
     }
 }
 
 /// A set-up triangle: the edges, the rows and columns it may cover, and its
 /// attribute planes.
 #[derive(Clone, Copy, Debug)]
-pub struct Triangle<const N: usize> {
+pub struct Triangle<'v, const N: usize> {
     /// The edges bounding the current row from the left and the right.
     left: Edge,
     right: Edge,
@@ -241,7 +242,10 @@ pub struct Triangle<const N: usize> {
     /// evaluated from the plane equation instead.
     exact: bool,
     recip: Recip,
-    verts: [RasterVertex<N>; 3],
+    /// The caller's vertices (for the exact path), and whether orienting
+    /// the triangle swapped the last two.
+    verts: &'v [RasterVertex<N>; 3],
+    swapped: bool,
     /// Which way the triangle faced before it was oriented.
     pub facing: Facing,
 }
@@ -287,7 +291,7 @@ pub struct Span<const N: usize> {
     pub step: [i64; N],
 }
 
-impl<const N: usize> Triangle<N> {
+impl<'v, const N: usize> Triangle<'v, N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
     /// area, is a back face and `cull` is set, or cannot touch `clip`.
     /// A back face that is kept is reoriented (its `facing` says so).
@@ -301,7 +305,7 @@ impl<const N: usize> Triangle<N> {
     /// assert!(Triangle::setup(&[v[0], v[2], v[1]], clip, true).is_some());
     /// ```
     #[inline(always)]
-    pub fn setup(v: &[RasterVertex<N>; 3], clip: ClipRect, cull: bool) -> Option<Triangle<N>> {
+    pub fn setup(v: &'v [RasterVertex<N>; 3], clip: ClipRect, cull: bool) -> Option<Self> {
         Self::setup_rows(v, clip, (clip.y0, clip.y1), cull)
     }
 
@@ -327,12 +331,13 @@ impl<const N: usize> Triangle<N> {
     /// ```
     #[inline(always)]
     pub fn setup_rows(
-        v: &[RasterVertex<N>; 3],
+        v: &'v [RasterVertex<N>; 3],
         viewport: ClipRect,
         rows: (i32, i32),
         cull: bool,
-    ) -> Option<Triangle<N>> {
+    ) -> Option<Self> {
         let clip = viewport;
+        let caller = v;
         let a = area2(v);
         if a == 0 {
             return None;
@@ -510,7 +515,8 @@ impl<const N: usize> Triangle<N> {
             ddy,
             exact,
             recip: r,
-            verts: v,
+            verts: caller,
+            swapped: facing == Facing::Front,
             facing,
         })
     }
@@ -535,13 +541,7 @@ impl<const N: usize> Triangle<N> {
             if lo <= hi {
                 let mut start = row;
                 if self.exact {
-                    let v = &self.verts;
-                    let (sx, sy) = (16 * lo + 8, 16 * y + 8);
-                    let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
-                    let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
-                    for (i, s) in start.iter_mut().enumerate() {
-                        *s = plane_at(v, self.recip, i, e20, e01);
-                    }
+                    start = self.exact_start(lo, y);
                 } else {
                     let off = lo - self.x_lo;
                     for (s, d) in start.iter_mut().zip(&self.ddx) {
@@ -565,6 +565,21 @@ impl<const N: usize> Triangle<N> {
             right.step();
             y += 1;
         }
+    }
+}
+
+impl<const N: usize> Triangle<'_, N> {
+    /// The attributes at pixel `(x, y)` from the plane equations (a
+    /// sliver's span start; rare, so kept out of the span walk).
+    #[cold]
+    #[inline(never)]
+    fn exact_start(&self, x: i64, y: i64) -> [i64; N] {
+        let c = self.verts;
+        let v = &if self.swapped { [c[0], c[2], c[1]] } else { *c };
+        let (sx, sy) = (16 * x + 8, 16 * y + 8);
+        let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
+        let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
+        core::array::from_fn(|i| plane_at(v, self.recip, i, e20, e01))
     }
 }
 
