@@ -54,15 +54,18 @@ pub fn variants() -> Vec<Variant> {
     out
 }
 
-/// What the Cortex-M0 firmware (firmware/microbit, 16 KB of RAM) renders:
-/// S1's scene with a sphere of 8 × 4 segments, whose 45-vertex cache
-/// (4.7 KB) fits beside a band of rows. S1's own 1225 vertices need a
-/// 127 KB cache.
+/// What the Cortex-M0 firmware (firmware/microbit, 256 KB of flash, 16 KB
+/// of RAM) renders band by band: S1, S2 and S4 in their own shading mode
+/// (file names `m0_` and the standard name). S3's mesh (18 721 vertices,
+/// 36 864 triangles: about 560 KB as kernel statics) does not fit the
+/// flash.
 pub fn m0_variants() -> Vec<Variant> {
-    let (w, h) = (standard_scenes::WIDTH, standard_scenes::HEIGHT);
-    vec![Variant {
-        name: "m0_sphere8_gouraud".into(),
-        mesh: "sphere8",
-        desc: standard_scenes::sphere_scene(w, h, 8, 4),
-    }]
+    variants()
+        .into_iter()
+        .filter(|v| ["s1_gouraud", "s2_gouraud", "s4_phong"].contains(&v.name.as_str()))
+        .map(|v| Variant {
+            name: format!("m0_{}", v.name),
+            ..v
+        })
+        .collect()
 }

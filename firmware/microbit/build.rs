@@ -1,4 +1,4 @@
-//! Host side of the build: the Cortex-M0 scene in kernel formats, written
+//! Host side of the build: the Cortex-M0 scenes in kernel formats, written
 //! to `$OUT_DIR/scene.rs` (firmware/common/codegen.rs); `memory.x`.
 
 use std::fmt::Write as _;
@@ -21,52 +21,66 @@ fn main() {
     println!("cargo:rerun-if-changed=../common/scenes.rs");
     println!("cargo:rerun-if-changed=../../src");
 
-    let v = scenes::m0_variants().remove(0);
-    let c = codegen::setup(&v.desc);
-    assert!(c.depth, "the band renderer here relies on the depth test");
+    let variants = scenes::m0_variants();
     let mut s = String::from(codegen::PRELUDE);
-    s.push_str(&codegen::mesh_statics("mesh", &v.desc.mesh));
-    let _ = write!(
-        s,
-        "
-/// File the frame goes to (NUL-terminated).
-pub const FILE: &str = \"{name}.bin\\0\";
-/// Frame size.
-pub const WIDTH: u32 = {w};
-/// Frame size.
-pub const HEIGHT: u32 = {h};
-/// Background, raw RGB565.
-pub const BACKGROUND: u16 = {bg};
-
-/// Renders the scene with depth test `D` into `target`.
+    let mut table = String::new();
+    for v in &variants {
+        let c = codegen::setup(&v.desc);
+        s.push_str(&codegen::mesh_statics(v.mesh, &v.desc.mesh));
+        let m = v.mesh.to_uppercase();
+        let depth = if c.depth {
+            "let mut db = fixshade::depth::DepthBand::new(depth);"
+        } else {
+            "let _ = depth;\n    let mut db = fixshade::depth::NoDepth;"
+        };
+        let _ = write!(
+            s,
+            "
+/// Renders `{name}` band by band into `target` (vertices recomputed per band).
 #[inline(never)]
-pub fn render<T, D>(target: &mut T, depth: &mut D, cache: &mut [fixshade::render::CachedVertex])
-    -> Result<fixshade::render::DrawStats, fixshade::render::RenderError<T::Error>>
-where
-    T: embedded_graphics::draw_target::DrawTarget<Color = embedded_graphics::pixelcolor::Rgb565>,
-    D: fixshade::depth::DepthTest,
+pub fn render_{name}(target: &mut super::Stream, colour: &mut [u16], depth: &mut [u16])
+    -> Result<fixshade::render::DrawStats, fixshade::render::RenderError<super::StreamError>>
 {{
     let camera = {camera};
     let material = {material};
     let lights: {lights_type} = {lights};
-    let mesh = fixshade::mesh::Mesh::new(&MESH_P, &MESH_I).with_normals(&MESH_N);
+    let mesh = fixshade::mesh::Mesh::new(&{m}_P, &{m}_I).with_normals(&{m}_N);
     let r = fixshade::render::Renderer::<_, {viewer}, _>::new(&camera, {model}, &material, {ambient}, &lights, {options});
-    r.draw::<{shading}, _, _>(&mesh, target, depth, cache)
+    let mut bands = fixshade::band::Bands {{
+        colour,
+        height: super::ROWS as u32,
+        background: Rgb565::from(RawU16::new({bg})),
+    }};
+    {depth}
+    r.draw_bands::<{shading}, _, _, _>(&mesh, target, &mut bands, &mut db, &mut fixshade::band::Recomputed)
 }}
 ",
-        name = v.name,
-        w = v.desc.width,
-        h = v.desc.height,
-        bg = c.background,
-        camera = c.camera,
-        material = c.material,
-        lights_type = c.lights_type,
-        lights = c.lights,
-        viewer = c.viewer,
-        model = c.model,
-        ambient = c.ambient,
-        options = c.options,
-        shading = c.shading,
+            name = v.name,
+            camera = c.camera,
+            material = c.material,
+            lights_type = c.lights_type,
+            lights = c.lights,
+            viewer = c.viewer,
+            model = c.model,
+            ambient = c.ambient,
+            options = c.options,
+            shading = c.shading,
+            bg = c.background,
+        );
+        let _ = writeln!(
+            table,
+            "    Variant {{ name: \"{0}\", file: \"{0}.bin\\0\", width: {1}, height: {2}, render: render_{0} }},",
+            v.name, v.desc.width, v.desc.height
+        );
+    }
+    let _ = write!(
+        s,
+        "
+/// The frames, in order.
+pub static VARIANTS: [super::Variant; {}] = [
+{table}];
+",
+        variants.len()
     );
     fs::write(out.join("scene.rs"), s).expect("scene.rs");
 }

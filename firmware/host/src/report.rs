@@ -260,41 +260,55 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
 
     let mb = raw.join("microbit");
     let m0_log = read(&mb.join("console.log"))?;
-    let m0 = fields(
-        m0_log
-            .lines()
-            .find(|l| l.starts_with("m0 "))
-            .ok_or("no m0 line")?,
-    );
-    let m0_count: u64 = counts(&mb.join("counts.txt"))?.iter().sum();
+    let m0_lines: Vec<_> = m0_log
+        .lines()
+        .filter(|l| l.starts_with("m0 "))
+        .map(fields)
+        .collect();
+    let m0_counts = counts(&mb.join("counts.txt"))?;
+    if m0_lines.is_empty() || m0_lines.len() != m0_counts.len() {
+        return Err("microbit: one console line and one count per frame expected".into());
+    }
     let m0_size = read(&mb.join("size.txt"))?;
     let _ = writeln!(
         md,
         "## Cortex-M0, 16 KB of RAM (QEMU `microbit`)\n\n\
-         firmware/microbit renders S1's scene with an 8 × 4 sphere (45 vertices: a 4.7 KB vertex \
-         cache; S1's 1225 vertices would need 127 KB) at 320 × 240 in {} bands of {} rows, each \
-         written to the host as it is done; the frame is byte-identical to the host's. Until the \
-         band renderer of issue 7 exists, each band re-renders the whole mesh into a band target \
-         with a depth test that rejects rows outside the band: {} instructions for the {} bands \
-         ({} pixels), not a per-frame cost. .text {} B, .rodata {} B, .bss {} B (band, depth band, \
-         vertex cache), stack high-water {} B, {} B of RAM never touched.\n",
-        num(&m0, "bands")?,
-        num(&m0, "rows")?,
-        m0_count,
-        num(&m0, "bands")?,
-        num(&m0, "pixels")?,
+         firmware/microbit renders S1, S2 and S4 at 320 × 240 with the band renderer \
+         (`draw_bands`, {} rows per band, vertices recomputed per band: no per-vertex storage) \
+         and streams each band to the host through its `DrawTarget` as it is done; every frame \
+         is byte-identical to the host's whole-frame render. S3's mesh (about 560 KB as kernel \
+         statics) does not fit the 256 KB of flash. Instructions per frame are counted around \
+         the `draw_bands` call, streaming included. .text {} B, .rodata {} B (meshes included), \
+         .bss {} B (colour and depth band).\n\n\
+         | frame | instructions | drawn pixels | stack high-water (B) | RAM never touched (B) |\n\
+         | --- | ---: | ---: | ---: | ---: |",
+        num(&m0_lines[0], "rows")?,
         section(&m0_size, ".text") + section(&m0_size, ".vector_table"),
         section(&m0_size, ".rodata"),
         section(&m0_size, ".bss"),
-        num(&m0, "stack")?,
-        num(&m0, "free")?
     );
+    let mut m0_js = Vec::new();
+    for (line, count) in m0_lines.iter().zip(&m0_counts) {
+        let name = line.get("frame").ok_or("microbit: no frame name")?;
+        let _ = writeln!(
+            md,
+            "| {name} | {count} | {} | {} | {} |",
+            num(line, "pixels")?,
+            num(line, "stack")?,
+            num(line, "free")?
+        );
+        m0_js.push(format!(
+            "{{\"frame\": \"{name}\", \"instructions\": {count}, \"stack\": {}}}",
+            num(line, "stack")?
+        ));
+    }
+    let _ = writeln!(md);
     let _ = writeln!(
         js,
-        "  \"microbit_m0\": {{\"bands\": {}, \"instructions_all_bands\": {m0_count}, \"stack\": {}, \"bss\": {}}},",
-        num(&m0, "bands")?,
-        num(&m0, "stack")?,
-        section(&m0_size, ".bss")
+        "  \"microbit_m0\": {{\"rows_per_band\": {}, \"bss\": {}, \"frames\": [{}]}},",
+        num(&m0_lines[0], "rows")?,
+        section(&m0_size, ".bss"),
+        m0_js.join(", ")
     );
     let _ = writeln!(
         md,

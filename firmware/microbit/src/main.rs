@@ -1,21 +1,19 @@
 //! fixshade on an emulated Cortex-M0 with 16 KB of RAM (QEMU `microbit`):
-//! a 320 × 240 frame, which cannot be held (150 KB), rendered band by band
-//! (four rows at a time) and each band written to the host through
-//! semihosting as it is done; then exit through semihosting.
+//! 320 × 240 frames, which cannot be held (150 KB each), rendered with the
+//! kernel's band renderer (`Renderer::draw_bands`, four rows per band,
+//! vertices recomputed per band: no per-vertex storage), each band streamed
+//! to the host through semihosting as the renderer hands it to its
+//! `DrawTarget`; then exit through semihosting.
 //!
-//! Until the kernel's band renderer (issue 7) exists, a band is drawn by
-//! rendering the whole scene into a [`Band`] target with a [`BandDepth`]
-//! test: the depth test of rows outside the band reads a row of zeros, so
-//! nothing is drawn there; rows inside see exactly the spans a whole-frame
-//! render gives them. Every band repeats the vertex stage and the
-//! triangle set-up, so the instruction count is not the kernel's cost per
-//! frame (scripts/firmware.sh counts that on the whole-frame firmware).
+//! The frames are S1, S2 and S4 of the standard scenes in their own
+//! shading modes (firmware/common/scenes.rs, `m0_variants`); the host
+//! renders the same scenes as whole frames and scripts/firmware.sh compares
+//! them byte for byte. Instructions are counted per frame around the
+//! `draw_bands` call, streaming included.
 
 #![no_std]
 #![no_main]
 
-use core::convert::Infallible;
-use core::mem::MaybeUninit;
 use core::ptr::{addr_of, addr_of_mut, write_volatile};
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
@@ -24,97 +22,99 @@ use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{OriginDimensions, Size};
 use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::primitives::{PointsIter, Rectangle};
+use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
-use fixshade::depth::DepthTest;
-use fixshade::render::CachedVertex;
+use fixshade::render::{DrawStats, RenderError};
 
 #[allow(clippy::all, missing_docs)]
 mod scene {
+    use super::Variant;
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    use embedded_graphics::pixelcolor::Rgb565;
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
-const W: usize = scene::WIDTH as usize;
+/// Rows per band.
 const ROWS: usize = 4;
-const VERTICES: usize = scene::MESH_P.len();
+/// The widest frame.
+const W: usize = 320;
 
-static mut PIXELS: [u16; W * ROWS] = [0; W * ROWS];
+static mut COLOUR: [u16; W * ROWS] = [0; W * ROWS];
 static mut DEPTH: [u16; W * ROWS] = [0; W * ROWS];
-static mut ZEROS: [u16; W] = [0; W];
-static mut CACHE: [MaybeUninit<CachedVertex>; VERTICES] =
-    [const { MaybeUninit::uninit() }; VERTICES];
 
-/// The frame's rows `y0 .. y0 + ROWS`; pixels elsewhere are dropped.
-struct Band<'a> {
-    px: &'a mut [u16],
-    y0: i32,
+/// Renders one frame band by band into the stream, given the colour and
+/// depth bands.
+type RenderFn =
+    fn(&mut Stream, &mut [u16], &mut [u16]) -> Result<DrawStats, RenderError<StreamError>>;
+
+/// One frame the firmware renders.
+pub struct Variant {
+    name: &'static str,
+    /// File name, NUL-terminated.
+    file: &'static str,
+    width: u32,
+    height: u32,
+    render: RenderFn,
 }
 
-impl Band<'_> {
-    #[inline]
-    fn put(&mut self, x: i32, y: i32, c: Rgb565) {
-        let r = y - self.y0;
-        if (0..ROWS as i32).contains(&r) && (0..W as i32).contains(&x) {
-            self.px[r as usize * W + x as usize] = RawU16::from(c).into_inner();
-        }
-    }
+/// Why the stream refused pixels.
+#[derive(Debug)]
+pub enum StreamError {
+    /// Pixels not in raster order from the frame's top left, whole rows at
+    /// a time (the only order a stream can take).
+    Order,
+    /// The host did not take the bytes.
+    Write,
 }
 
-impl OriginDimensions for Band<'_> {
+/// A display that is a semihosting file: it takes whole rows, top to
+/// bottom, as `draw_bands` sends its bands, and writes them to the host.
+pub struct Stream {
+    fd: usize,
+    size: Size,
+    /// The next row expected.
+    row: u32,
+}
+
+impl OriginDimensions for Stream {
     fn size(&self) -> Size {
-        Size::new(scene::WIDTH, scene::HEIGHT)
+        self.size
     }
 }
 
-impl DrawTarget for Band<'_> {
+impl DrawTarget for Stream {
     type Color = Rgb565;
-    type Error = Infallible;
+    type Error = StreamError;
 
     fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
         &mut self,
-        it: I,
-    ) -> Result<(), Infallible> {
-        for Pixel(p, c) in it {
-            self.put(p.x, p.y, c);
-        }
-        Ok(())
+        _: I,
+    ) -> Result<(), StreamError> {
+        Err(StreamError::Order)
     }
 
     fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
         &mut self,
         area: &Rectangle,
         colors: I,
-    ) -> Result<(), Infallible> {
-        for (p, c) in area.points().zip(colors) {
-            self.put(p.x, p.y, c);
+    ) -> Result<(), StreamError> {
+        let (p, s) = (area.top_left, area.size);
+        if p.x != 0 || p.y != self.row as i32 || s.width != self.size.width {
+            return Err(StreamError::Order);
         }
+        let mut buf = [0u8; 256];
+        let mut n = 0;
+        for c in colors.into_iter().take((s.width * s.height) as usize) {
+            buf[n..n + 2].copy_from_slice(&RawU16::from(c).into_inner().to_le_bytes());
+            n += 2;
+            if n == buf.len() {
+                write_all(self.fd, &buf)?;
+                n = 0;
+            }
+        }
+        write_all(self.fd, &buf[..n])?;
+        self.row += s.height;
         Ok(())
-    }
-}
-
-/// The depth rows of the band; any other row reads as zeros (nearer than
-/// anything), so no pixel outside the band passes.
-struct BandDepth<'a> {
-    rows: &'a mut [u16],
-    zeros: &'a mut [u16],
-    y0: u32,
-}
-
-impl DepthTest for BandDepth<'_> {
-    const ENABLED: bool = true;
-    fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16] {
-        let x0 = x0 as usize;
-        if x0 >= W {
-            return &mut [];
-        }
-        let n = (len as usize).min(W - x0);
-        if y >= self.y0 && y < self.y0 + ROWS as u32 {
-            let start = (y - self.y0) as usize * W + x0;
-            &mut self.rows[start..start + n]
-        } else {
-            // Never written: no depth passes against 0.
-            &mut self.zeros[..n]
-        }
     }
 }
 
@@ -145,21 +145,21 @@ fn exit(ok: bool) -> ! {
 }
 
 /// Semihosting `SYS_WRITE` of all of `data` to `fd`.
-fn write_all(fd: usize, data: &[u8]) -> bool {
+fn write_all(fd: usize, data: &[u8]) -> Result<(), StreamError> {
     let mut rest = data;
     while !rest.is_empty() {
         // SAFETY: `rest` is a live slice; the call returns the bytes not
         // written.
         let left = unsafe { syscall!(WRITE, fd, rest.as_ptr(), rest.len()) };
         if left == 0 {
-            return true;
+            return Ok(());
         }
         if left > rest.len() {
-            return false;
+            return Err(StreamError::Write);
         }
         rest = &rest[rest.len() - left..];
     }
-    true
+    Ok(())
 }
 
 const PAINT: u32 = 0xA5C3_5A3C;
@@ -168,36 +168,9 @@ extern "C" {
     static __ebss: u32;
 }
 
-#[entry]
-fn main() -> ! {
-    // SAFETY: `main` runs once; these are its only references.
-    let (px, depth, zeros, cache) = unsafe {
-        let cache = &mut *addr_of_mut!(CACHE);
-        for c in cache.iter_mut() {
-            c.write(CachedVertex::default());
-        }
-        (
-            &mut *addr_of_mut!(PIXELS),
-            &mut *addr_of_mut!(DEPTH),
-            &mut *addr_of_mut!(ZEROS),
-            core::slice::from_raw_parts_mut(cache.as_mut_ptr().cast::<CachedVertex>(), VERTICES),
-        )
-    };
-    let name = scene::FILE.as_bytes();
-    // SAFETY: NUL-terminated name; the length excludes the NUL.
-    let fd = unsafe {
-        syscall!(
-            OPEN,
-            name.as_ptr(),
-            nr::open::W_TRUNC_BINARY,
-            name.len() - 1
-        )
-    };
-    if fd as isize == -1 {
-        exit(false)
-    }
-
-    // Paint the free RAM between the statics and the stack.
+/// Paints the free RAM between the statics and the stack; returns its
+/// bounds.
+fn paint() -> (usize, usize, usize) {
     let sp = cortex_m::register::msp::read() as usize;
     // The linker's end of .bss (taking its address needs no `unsafe`).
     let bottom = (addr_of!(__ebss) as usize + 3) & !3;
@@ -208,50 +181,66 @@ fn main() -> ! {
         unsafe { write_volatile(p as *mut u32, PAINT) };
         p += 4;
     }
+    (sp, bottom, top)
+}
 
-    let mut ok = true;
-    let mut pixels = 0;
-    let mut y0 = 0;
-    while y0 < scene::HEIGHT {
-        px.fill(scene::BACKGROUND);
-        depth.fill(u16::MAX);
-        let mut band = Band {
-            px: &mut px[..],
-            y0: y0 as i32,
-        };
-        let mut bd = BandDepth {
-            rows: &mut depth[..],
-            zeros: &mut zeros[..],
-            y0,
-        };
-        fw_count_begin();
-        let res = scene::render(&mut band, &mut bd, cache);
-        fw_count_end();
-        match res {
-            Ok(s) => pixels += s.pixels,
-            Err(_) => ok = false,
-        }
-        // SAFETY: u16 has no padding; little-endian bytes.
-        let bytes = unsafe { core::slice::from_raw_parts(px.as_ptr().cast::<u8>(), px.len() * 2) };
-        ok &= write_all(fd, bytes);
-        y0 += ROWS as u32;
-    }
-    // SAFETY: `fd` was opened above.
-    unsafe { syscall!(CLOSE, fd) };
-
+/// The lowest painted word that changed.
+fn high_water(bottom: usize, top: usize) -> usize {
     let mut p = bottom;
-    // SAFETY: as above.
+    // SAFETY: free RAM below the live stack, painted by `paint`.
     while p < top && unsafe { core::ptr::read_volatile(p as *const u32) } == PAINT {
         p += 4;
     }
-    hprintln!(
-        "m0 bands={} rows={} pixels={} stack={} free={}",
-        (scene::HEIGHT as usize).div_ceil(ROWS),
-        ROWS,
-        pixels,
-        sp - p,
-        p - bottom
-    );
+    p
+}
+
+#[entry]
+fn main() -> ! {
+    // SAFETY: `main` runs once; these are the only references.
+    let (colour, depth) = unsafe { (&mut *addr_of_mut!(COLOUR), &mut *addr_of_mut!(DEPTH)) };
+    let mut ok = true;
+    for v in &scene::VARIANTS {
+        let name = v.file.as_bytes();
+        // SAFETY: NUL-terminated name; the length excludes the NUL.
+        let fd = unsafe {
+            syscall!(
+                OPEN,
+                name.as_ptr(),
+                nr::open::W_TRUNC_BINARY,
+                name.len() - 1
+            )
+        };
+        if fd as isize == -1 || v.width as usize > W {
+            exit(false)
+        }
+        let mut stream = Stream {
+            fd,
+            size: Size::new(v.width, v.height),
+            row: 0,
+        };
+        let (sp, bottom, top) = paint();
+        fw_count_begin();
+        let res = (v.render)(&mut stream, &mut colour[..], &mut depth[..]);
+        fw_count_end();
+        let low = high_water(bottom, top);
+        // SAFETY: `fd` was opened above.
+        unsafe { syscall!(CLOSE, fd) };
+        match res {
+            Ok(s) if stream.row == v.height => hprintln!(
+                "m0 frame={} bands={} rows={} pixels={} stack={} free={}",
+                v.name,
+                v.height.div_ceil(ROWS as u32),
+                ROWS,
+                s.pixels,
+                sp - low,
+                low - bottom
+            ),
+            other => {
+                hprintln!("m0 {} failed: {:?}", v.name, other.err());
+                ok = false;
+            }
+        }
+    }
     exit(ok)
 }
 
