@@ -15,6 +15,19 @@ use fixshade::mesh::vertex_normals;
 use fixshade::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 use fixshade::{Exponent, Mat4, Unit3, Vec3};
 
+/// A firmware build script's common start: puts the crate's `memory.x` on
+/// the linker's path, says what reruns the script, and returns `OUT_DIR`.
+pub fn start_build() -> std::path::PathBuf {
+    let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
+    std::fs::copy("memory.x", out.join("memory.x")).expect("memory.x");
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=../common/codegen.rs");
+    println!("cargo:rerun-if-changed=../common/scenes.rs");
+    println!("cargo:rerun-if-changed=../../src");
+    out
+}
+
 /// `Rgb::from_bits(..)` for a colour in `[0, ∞)`.
 pub fn rgb(c: [f64; 3]) -> String {
     let b = Rgb::from_f64(c).expect("colour").to_bits();

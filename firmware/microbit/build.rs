@@ -2,8 +2,7 @@
 //! to `$OUT_DIR/scene.rs` (firmware/common/codegen.rs); `memory.x`.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
-use std::{env, fs};
+use std::fs;
 
 #[path = "../common/codegen.rs"]
 #[allow(dead_code)]
@@ -13,13 +12,7 @@ mod codegen;
 mod scenes;
 
 fn main() {
-    let out = PathBuf::from(env::var_os("OUT_DIR").expect("OUT_DIR"));
-    fs::copy("memory.x", out.join("memory.x")).expect("memory.x");
-    println!("cargo:rustc-link-search={}", out.display());
-    println!("cargo:rerun-if-changed=memory.x");
-    println!("cargo:rerun-if-changed=../common/codegen.rs");
-    println!("cargo:rerun-if-changed=../common/scenes.rs");
-    println!("cargo:rerun-if-changed=../../src");
+    let out = codegen::start_build();
 
     let variants = scenes::m0_variants();
     let mut s = String::from(codegen::PRELUDE);
