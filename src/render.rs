@@ -75,7 +75,9 @@ impl ShadingMode for Flat {
 }
 
 /// Gouraud shading: the equation per vertex, colours interpolated with
-/// integer arithmetic (16 fractional bits below the RGB565 step).
+/// integer arithmetic (16 fractional bits below the RGB565 step; 11, 10
+/// for green, on spans of at least [`PAIR_SPAN`] pixels, see
+/// [`crate::span`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Gouraud;
 impl ShadingMode for Gouraud {
