@@ -924,10 +924,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 }
 
-/// The shortest Gouraud span coloured two pixels at a time: below it the
-/// pair shader's set-up (about 90 instructions on x86-64 and on the
-/// Cortex-M4, measured with callgrind and the firmware's QEMU plugin)
-/// costs more than its cheaper pixels save.
+/// The shortest Gouraud span coloured two pixels at a time. The pair
+/// shader's set-up (three lanes from `Q.16`, the per-pair step) costs more
+/// than the one-pixel shader's, so short spans keep the latter; 16 is a
+/// judgement, not a measured break-even (S1, whose spans are short, counts
+/// the same instructions with 16 or 32 here: callgrind, `band_cost`).
 pub const PAIR_SPAN: u32 = 16;
 
 /// Raster vertices of a clipped polygon: window position, depth as
