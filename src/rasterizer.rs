@@ -241,6 +241,8 @@ pub struct Triangle<'v, const N: usize> {
     /// Gradients too steep to step (a sliver): each span's start is
     /// evaluated from the plane equation instead.
     exact: bool,
+    /// Spans stay within [`DRIFT`] of the vertex values.
+    bounded: bool,
     recip: Recip,
     /// The caller's vertices (for the exact path), and whether orienting
     /// the triangle swapped the last two.
@@ -261,7 +263,7 @@ const STEEP: u128 = 1 << 40;
 /// and `|d| < 2^34`: the products (below 2^94) are split in a high and a
 /// low part so that the product with the 32-bit mantissa stays in `i128`.
 fn plane_at<const N: usize>(
-    v: &[RasterVertex<N>; 3],
+    v: [&RasterVertex<N>; 3],
     r: Recip,
     i: usize,
     e20: i64,
@@ -289,7 +291,28 @@ pub struct Span<const N: usize> {
     pub start: [i64; N],
     /// Attribute step per pixel.
     pub step: [i64; N],
+    /// Every attribute at every pixel of the span lies within [`DRIFT`]
+    /// of the range of the triangle's vertex values (a small triangle with
+    /// moderate gradients, see [`DRIFT`]); `false` when not known.
+    pub bounded: bool,
 }
+
+/// How far a bounded span's attributes may stray from the range of the
+/// vertex values, in attribute units.
+///
+/// A triangle is bounded when its bounding box is under 256 pixels a side,
+/// it is not a sliver, and every gradient is at most [`BOUNDED_GRADIENT`]
+/// per pixel. The exact plane at a covered pixel centre (inside the
+/// closed triangle) lies between the vertex values. The stepped value
+/// differs from it by the origin's error (the gradients' rounding, ½ unit
+/// per pixel plus the reciprocal's relative 2⁻³¹ of at most 2²⁴, over at
+/// most 256 pixels on each axis, then ½ for the final rounding: below 258)
+/// plus the stepping's (the same per pixel over at most 2 × 256 pixels:
+/// below 257). 1024 leaves twice that.
+pub const DRIFT: i64 = 1024;
+
+/// The largest gradient (per pixel, attribute units) of a bounded triangle.
+pub const BOUNDED_GRADIENT: i64 = 1 << 24;
 
 impl<'v, const N: usize> Triangle<'v, N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
@@ -344,12 +367,13 @@ impl<'v, const N: usize> Triangle<'v, N> {
         }
         // With y down, a triangle counter-clockwise in NDC (a front face)
         // has a negative area; coverage wants it positive.
+        // References, not copies, of the oriented vertices.
         let (facing, v) = if a < 0 {
-            (Facing::Front, [v[0], v[2], v[1]])
+            (Facing::Front, [&v[0], &v[2], &v[1]])
         } else if cull {
             return None;
         } else {
-            (Facing::Back, *v)
+            (Facing::Back, [&v[0], &v[1], &v[2]])
         };
         let a = a.abs();
         // Pixel bounds of the samples (16x+8 within [min, max]).
@@ -487,9 +511,15 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 let t = ddx[i] * (sx - v[0].x) + ddy[i] * (sy - v[0].y);
                 v[0].attr[i] + ((t + 8) >> 4)
             } else {
-                plane_at(&v, r, i, e20, e01)
+                plane_at(v, r, i, e20, e01)
             };
         }
+        let bounded = small
+            && !exact
+            && ddx
+                .iter()
+                .chain(&ddy)
+                .all(|g| (-BOUNDED_GRADIENT..=BOUNDED_GRADIENT).contains(g));
         // The planes are anchored at the viewport's corner (x_lo, y_lo), so
         // that rounding does not depend on the band; the first drawn row's
         // values are the origin plus k row steps, exactly (integers; the
@@ -514,6 +544,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
             ddx,
             ddy,
             exact,
+            bounded,
             recip: r,
             verts: caller,
             swapped: facing == Facing::Front,
@@ -554,6 +585,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
                     x1: hi as i32,
                     start,
                     step: self.ddx,
+                    bounded: self.bounded,
                 });
             }
             if !self.exact {
@@ -575,7 +607,11 @@ impl<const N: usize> Triangle<'_, N> {
     #[inline(never)]
     fn exact_start(&self, x: i64, y: i64) -> [i64; N] {
         let c = self.verts;
-        let v = &if self.swapped { [c[0], c[2], c[1]] } else { *c };
+        let v = if self.swapped {
+            [&c[0], &c[2], &c[1]]
+        } else {
+            [&c[0], &c[1], &c[2]]
+        };
         let (sx, sy) = (16 * x + 8, 16 * y + 8);
         let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
         let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);

@@ -41,10 +41,10 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{area2, rasterize_rows, ClipRect, RasterVertex, Span, COORD_LIMIT};
+use crate::rasterizer::{area2, rasterize_rows, ClipRect, RasterVertex, Span, COORD_LIMIT, DRIFT};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
-    PixelSink, SpanShader, TargetSink,
+    PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
 };
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
 
@@ -551,11 +551,17 @@ fn centroid(e: [Vec3; 3]) -> Vec3 {
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Transforms and projects vertex `i` unless already done this frame
     /// (its normal is transformed when first needed).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn project(&self, c: &mut CachedVertex, i: usize) {
-        if c.flags & F_PROJECTED != 0 {
-            return;
+        // Most calls find the vertex done (a vertex is shared by about six
+        // triangles): the test is inlined, the work is not.
+        if c.flags & F_PROJECTED == 0 {
+            self.project_now(c, i);
         }
+    }
+
+    #[inline(never)]
+    fn project_now(&self, c: &mut CachedVertex, i: usize) {
         c.eye = self.eye(i);
         c.clip = self.proj.clip(c.eye);
         c.win = self.window(&c.clip);
@@ -627,23 +633,31 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
     /// Lights cached vertex `c` (mesh vertex `i`) for the given facing
     /// unless already done.
-    #[inline]
+    #[inline(always)]
     fn light(&self, c: &mut CachedVertex, i: usize, back: bool, stats: &mut DrawStats) -> Shade {
+        // As in `project`: the test inlined, the lighting not.
+        let flag = if back { F_BACK } else { F_FRONT };
+        if c.flags & flag == 0 {
+            self.light_now(c, i, back, stats);
+        }
         if back {
-            if c.flags & F_BACK == 0 {
-                c.back = self.r.lighting.shade(c.eye, self.normal(c, i).neg());
-                c.flags |= F_BACK;
-                stats.lit += 1;
-            }
             c.back
         } else {
-            if c.flags & F_FRONT == 0 {
-                c.front = self.r.lighting.shade(c.eye, self.normal(c, i));
-                c.flags |= F_FRONT;
-                stats.lit += 1;
-            }
             c.front
         }
+    }
+
+    #[inline(never)]
+    fn light_now(&self, c: &mut CachedVertex, i: usize, back: bool, stats: &mut DrawStats) {
+        let n = self.normal(c, i);
+        if back {
+            c.back = self.r.lighting.shade(c.eye, n.neg());
+            c.flags |= F_BACK;
+        } else {
+            c.front = self.r.lighting.shade(c.eye, n);
+            c.flags |= F_FRONT;
+        }
+        stats.lit += 1;
     }
 
     /// Clips, culls, lights and rasterizes one triangle (its rows in
@@ -717,6 +731,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let lit_back = a > 0 && self.r.options.two_sided;
         let poly = &poly[..count];
+        // Depth inside the u16 range, with the drift of a bounded span to
+        // spare, at every vertex: then on every pixel of a bounded span.
+        let z_inside = win[..count]
+            .iter()
+            .all(|w| (DRIFT..(65535 << 8) - DRIFT).contains(&w[2]));
         match M::KIND {
             ShadingKind::Flat => {
                 let e = [0, 1, 2].map(|k| c.eye_normal(self, k, false).0);
@@ -727,7 +746,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 stats.lit += 1;
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
                 self.fan(&verts[..count], stats, |sp, st| {
-                    self.span_flat(sp, colour, plain, sink, depth, st)
+                    self.span_flat(sp, colour, plain, sink, depth, st, z_inside)
                 })
             }
             ShadingKind::Gouraud => {
@@ -744,7 +763,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     ]
                 });
                 self.fan(&verts[..count], stats, |sp, st| {
-                    self.span_gouraud(sp, sink, depth, st)
+                    self.span_gouraud(sp, sink, depth, st, z_inside)
                 })
             }
             ShadingKind::Phong => {
@@ -765,7 +784,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     ]
                 });
                 self.fan(&verts[..count], stats, |sp, st| {
-                    self.span_phong(sp, sink, depth, st)
+                    self.span_phong(sp, sink, depth, st, z_inside)
                 })
             }
         }
@@ -809,10 +828,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ) -> Result<(), E> {
         let mut res = Ok(());
         for k in 1..verts.len() - 1 {
-            let tri = [verts[0], verts[k], verts[k + 1]];
+            // The first piece is the first three vertices (no copy).
+            let copy;
+            let tri = match <&[RasterVertex<N>; 3]>::try_from(&verts[k - 1..k + 2]) {
+                Ok(t) if k == 1 => t,
+                _ => {
+                    copy = [verts[0], verts[k], verts[k + 1]];
+                    &copy
+                }
+            };
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
-            let drawn = rasterize_rows(&tri, self.viewport, self.rows, false, |s| {
+            let drawn = rasterize_rows(tri, self.viewport, self.rows, false, |s| {
                 if res.is_ok() {
                     res = span(s, stats);
                 }
@@ -828,6 +855,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn span_flat<P: PixelSink, D: DepthTest>(
         &self,
         s: &Span<1>,
@@ -836,6 +864,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
+        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
         let sh = FlatShader {
             plain,
@@ -844,13 +873,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             x: s.x0,
             y: s.y,
         };
-        self.send(s, sink, depth, stats, sh)
+        self.send(s, sink, depth, stats, z_inside, sh)
     }
 
     /// Gouraud spans of at least [`PAIR_SPAN`] pixels are coloured two
     /// pixels at a time ([`PairGouraud`]: cheaper per pixel, dearer to set
     /// up); shorter ones one at a time ([`PackedGouraud`]). Which one a span
     /// takes depends on its length only, so bands and whole frames agree.
+    ///
+    /// A bounded span (see [`DRIFT`]) needs no range check: vertex colours
+    /// are at least ½ LSB (2¹⁵) inside their fields, more than the drift
+    /// plus the pair shader's lane margin. Where the check is made, it
+    /// passes on such a span, so the pixels are the same.
     #[inline(always)]
     fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
@@ -858,18 +892,41 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
+        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
+        const { assert!(DRIFT + LANE_MARGIN < 1 << 15) };
         let dither = self.r.options.dither;
         let c = [s.start[1], s.start[2], s.start[3]];
         let d = [s.step[1], s.step[2], s.step[3]];
         let n = (s.x1 - s.x0 + 1) as u32;
+        if !dither && s.bounded {
+            return if n >= PAIR_SPAN {
+                self.send(
+                    s,
+                    sink,
+                    depth,
+                    stats,
+                    z_inside,
+                    PairGouraud::new_inside(c, d, n),
+                )
+            } else {
+                self.send(
+                    s,
+                    sink,
+                    depth,
+                    stats,
+                    z_inside,
+                    PackedGouraud::new_inside(c, d),
+                )
+            };
+        }
         if !dither && n >= PAIR_SPAN {
             if let Some(sh) = PairGouraud::new(c, d, n) {
-                return self.send(s, sink, depth, stats, sh);
+                return self.send(s, sink, depth, stats, z_inside, sh);
             }
         }
         match (dither, PackedGouraud::new(c, d, n)) {
-            (false, Some(sh)) => self.send(s, sink, depth, stats, sh),
+            (false, Some(sh)) => self.send(s, sink, depth, stats, z_inside, sh),
             _ => {
                 let sh = ClampedGouraud {
                     c,
@@ -878,7 +935,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     x: s.x0,
                     y: s.y,
                 };
-                self.send(s, sink, depth, stats, sh)
+                self.send(s, sink, depth, stats, z_inside, sh)
             }
         }
     }
@@ -890,6 +947,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
+        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
         let mut cur = [0i64; 6];
         let mut d = [0i64; 6];
@@ -903,10 +961,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             x: s.x0,
             y: s.y,
         };
-        self.send(s, sink, depth, stats, sh)
+        self.send(s, sink, depth, stats, z_inside, sh)
     }
 
-    /// One span through the depth test into the sink.
+    /// One span through the depth test into the sink; `z_inside`: the
+    /// triangle's vertex depths are at least [`DRIFT`] inside the `u16`
+    /// range (so a bounded span's depth is inside it).
     #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
@@ -914,11 +974,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
+        z_inside: bool,
         sh: Sh,
     ) -> Result<(), RenderError<P::Error>> {
         let n = (s.x1 - s.x0 + 1) as u32;
-        let w = emit(sink, depth, s.y, s.x0, n, s.start[0], s.step[0], sh)
-            .map_err(RenderError::Target)?;
+        let z = SpanDepth {
+            z: s.start[0],
+            dz: s.step[0],
+            inside: z_inside && s.bounded,
+        };
+        let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
         stats.pixels += w;
         Ok(())
     }

@@ -196,17 +196,61 @@ pub trait SpanShader {
     /// Runs the depth test along a row of pixels and their depths (`z`,
     /// `dz`: depth at the first pixel and its step, `Q.24` of `z_w`),
     /// writing depth and colour where it passes; returns how many passed.
+    /// Where the depth stays in `0 .. 65535 · 2⁸` on the whole row, this is
+    /// [`SpanShader::depth_row_inside`]; elsewhere depths are clamped.
     #[inline(always)]
     fn depth_row(&mut self, row: &mut [u16], drow: &mut [u16], z: i64, dz: i64) -> u32
     where
         Self: Sized,
     {
-        depth_row_pixels(self, row, drow, z, dz)
+        let len = row.len().min(drow.len());
+        match depth_inside(z, dz, len) {
+            Some((z, dz)) => self.depth_row_inside(row, drow, z, dz),
+            None => depth_row_pixels(self, row, drow, z, dz),
+        }
+    }
+    /// [`SpanShader::depth_row`] for a row whose depth the caller knows to
+    /// stay in `0 .. 65535 · 2⁸` (so that `z`, `dz` fit `i32`): no clamp.
+    #[inline(always)]
+    fn depth_row_inside(&mut self, row: &mut [u16], drow: &mut [u16], z: i32, dz: i32) -> u32
+    where
+        Self: Sized,
+    {
+        let len = row.len().min(drow.len());
+        let (row, drow) = (&mut row[..len], &mut drow[..len]);
+        let (mut z, mut written) = (z, 0);
+        for (p, d) in row.iter_mut().zip(drow.iter_mut()) {
+            let z16 = (z >> 8) as u16;
+            if z16 < *d {
+                *d = z16;
+                *p = self.next();
+                written += 1;
+            } else {
+                self.skip(1);
+            }
+            z = z.wrapping_add(dz);
+        }
+        written
     }
 }
 
-/// [`SpanShader::depth_row`] a pixel at a time: a pixel that fails costs
-/// no colour.
+/// `(z, dz)` as `i32` if the depth `z + k·dz` stays in `0 .. 65535 · 2⁸`
+/// for `k < len` (it is linear: both ends inside suffice).
+#[inline(always)]
+fn depth_inside(z: i64, dz: i64, len: usize) -> Option<(i32, i32)> {
+    // |dz| ≤ 2^40 (the rasterizer's steep limit), len ≤ 2^20: no overflow.
+    let z_end = z + dz * (len as i64 - 1).max(0);
+    let range = 0..65535 << 8;
+    if range.contains(&z) && range.contains(&z_end) {
+        // Inside, |dz| < 2^24 unless len = 1 (then it is never used).
+        Some((z as i32, if len > 1 { dz as i32 } else { 0 }))
+    } else {
+        None
+    }
+}
+
+/// [`SpanShader::depth_row`] a pixel at a time with the depth clamped to
+/// `u16` at every pixel: a pixel that fails costs no colour.
 #[inline(always)]
 pub fn depth_row_pixels<S: SpanShader>(
     sh: &mut S,
@@ -217,26 +261,7 @@ pub fn depth_row_pixels<S: SpanShader>(
 ) -> u32 {
     let len = row.len().min(drow.len());
     let (row, drow) = (&mut row[..len], &mut drow[..len]);
-    let z_end = z + dz * (len as i64 - 1).max(0);
     let mut written = 0;
-    if (0..65535 << 8).contains(&z) && (0..65535 << 8).contains(&z_end) {
-        // Depth stays inside the u16 range on the whole span (it is
-        // linear): no clamp per pixel.
-        let mut z = z as i32;
-        let dz = dz as i32;
-        for (p, d) in row.iter_mut().zip(drow.iter_mut()) {
-            let z16 = (z >> 8) as u16;
-            if z16 < *d {
-                *d = z16;
-                *p = sh.next();
-                written += 1;
-            } else {
-                sh.skip(1);
-            }
-            z = z.wrapping_add(dz);
-        }
-        return written;
-    }
     let mut z = z;
     for (p, d) in row.iter_mut().zip(drow.iter_mut()) {
         let z16 = (z >> 8).clamp(0, 65535) as u16;
@@ -345,16 +370,24 @@ impl PackedGouraud {
                 return None;
             }
         }
+        Some(Self::new_inside(c, d))
+    }
+
+    /// As [`PackedGouraud::new`] for channels the caller knows to stay
+    /// inside their fields on the whole span (a span of a bounded triangle,
+    /// see [`crate::render`]): no check.
+    #[inline(always)]
+    pub(crate) fn new_inside(c: [i64; 3], d: [i64; 3]) -> PackedGouraud {
         let pack = |v: [i64; 3]| {
             (v[0] as u64)
                 .wrapping_shl(43)
                 .wrapping_add((v[1] as u64).wrapping_shl(21))
                 .wrapping_add(v[2] as u64)
         };
-        Some(PackedGouraud {
+        PackedGouraud {
             acc: pack(c),
             step: pack(d),
-        })
+        }
     }
 }
 
@@ -408,7 +441,7 @@ pub const BLOCK_PAIRS: u32 = 32;
 /// to stay inside theirs: a lane deviates from the exact value by at most
 /// ½ unit (the anchor's rounding) plus ½ unit per pair stepped, at most
 /// `BLOCK_PAIRS/2` units of 2⁶ `Q.16` steps (green's lane, the coarser).
-const LANE_MARGIN: i64 = 64 * BLOCK_PAIRS as i64 / 2 + 64;
+pub(crate) const LANE_MARGIN: i64 = 64 * BLOCK_PAIRS as i64 / 2 + 64;
 
 /// Three `Q.16` channels (red, green, blue) as lane words: red and blue
 /// `Q5.11` (`(v + 2⁴) >> 5`), green `Q6.10` (`(v + 2⁵) >> 6`).
@@ -478,6 +511,13 @@ impl PairGouraud {
                 return None;
             }
         }
+        Some(Self::new_inside(c, d, n))
+    }
+
+    /// As [`PairGouraud::new`] for channels the caller knows to stay at
+    /// least `LANE_MARGIN` inside their fields on the whole span: no check.
+    #[inline(always)]
+    pub(crate) fn new_inside(c: [i64; 3], d: [i64; 3], n: u32) -> PairGouraud {
         // Both ends inside: |c| < 2^22, and |d| < 2^22 unless n = 1 (then
         // the step is never used).
         let d = if n > 1 { d.map(|v| v as i32) } else { [0; 3] };
@@ -495,7 +535,7 @@ impl PairGouraud {
         let s = lane([2 * d[0], 2 * d[1], 2 * d[2]]);
         sh.step = s.map(|s| (s as u32).wrapping_mul(0x1_0001));
         sh.start_block();
-        Some(sh)
+        sh
     }
 
     /// The lanes at the block anchor (pixel and pixel + 1), and the anchor
@@ -608,16 +648,13 @@ impl SpanShader for PairGouraud {
         }
     }
     #[inline(never)]
-    fn depth_row(&mut self, row: &mut [u16], drow: &mut [u16], z: i64, dz: i64) -> u32 {
+    fn depth_row_inside(&mut self, row: &mut [u16], drow: &mut [u16], z: i32, dz: i32) -> u32 {
         let len = row.len().min(drow.len());
-        let z_end = z + dz * (len as i64 - 1).max(0);
-        if self.upper || !(0..65535 << 8).contains(&z) || !(0..65535 << 8).contains(&z_end) {
-            return depth_row_pixels(self, row, drow, z, dz);
+        if self.upper {
+            return depth_row_pixels(self, row, drow, z as i64, dz as i64);
         }
-        // Depth stays inside the u16 range on the whole span (it is
-        // linear): no clamp per pixel.
         let (row, drow) = (&mut row[..len], &mut drow[..len]);
-        let (mut z, dz) = (z as i32, dz as i32);
+        let mut z = z;
         let mut written = 0;
         let even = len & !1;
         let (pairs, rest) = row.split_at_mut(even);
@@ -687,19 +724,43 @@ impl SpanShader for ClampedGouraud {
     }
 }
 
+/// A span's depth: `Q.24` of `z_w` at its first pixel and the step per
+/// pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpanDepth {
+    /// Depth at the first pixel.
+    pub z: i64,
+    /// Step per pixel.
+    pub dz: i64,
+    /// The caller knows that the depth stays in `0 .. 65535 · 2⁸` on the
+    /// whole span (no range check, no clamp); `false` if it does not know.
+    pub inside: bool,
+}
+
 /// Sends a span: runs the depth test (if any) and writes the pixels that
-/// pass with colours from `sh`. `z`, `dz`: depth at the first pixel and its
-/// step, `Q.24` of `z_w`. Returns the number of pixels written.
+/// pass with colours from `sh`. Returns the number of pixels written.
+///
+/// ```
+/// use fixshade::depth::DepthBuffer;
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+/// let mut px = [0u16; 8];
+/// let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+/// let mut zs = [u16::MAX; 8];
+/// let mut depth = DepthBuffer::new(&mut zs, 8, 1).unwrap();
+/// let sh = FlatShader { plain: 7, shade: Default::default(), dither: false, x: 2, y: 0 };
+/// let z = SpanDepth { z: 1 << 23, dz: 0, inside: false };
+/// let n = emit(&mut FramebufferSink { fb: &mut fb }, &mut depth, 0, 2, 4, z, sh).unwrap();
+/// assert_eq!((n, px), (4, [0, 0, 7, 7, 7, 7, 0, 0]));
+/// ```
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
     sink: &mut P,
     depth: &mut D,
     y: i32,
     x0: i32,
     n: u32,
-    z: i64,
-    dz: i64,
+    z: SpanDepth,
     mut sh: S,
 ) -> Result<u32, P::Error> {
     if !D::ENABLED {
@@ -712,9 +773,14 @@ pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
     }
     let drow = depth.row(y as u32, x0 as u32, n);
     if let Some(row) = sink.row(y, x0, n as usize) {
-        return Ok(sh.depth_row(row, drow, z, dz));
+        if z.inside {
+            // Inside: |dz| < 2^24 unless n = 1 (then the step is not used).
+            let dz = if n > 1 { z.dz as i32 } else { 0 };
+            return Ok(sh.depth_row_inside(row, drow, z.z as i32, dz));
+        }
+        return Ok(sh.depth_row(row, drow, z.z, z.dz));
     }
-    let mut z = z;
+    let SpanDepth { mut z, dz, .. } = z;
     let mut written = 0;
     // A display: one fill_contiguous per run of passing pixels. The depth
     // test of a run is done before its pixels are sent.

@@ -4,7 +4,7 @@
 //! pixels whose centre passes all three edge functions with the top-left
 //! rule (SPEC.md 5), evaluated directly at every pixel.
 
-use fixshade::rasterizer::{rasterize_rows, ClipRect, RasterVertex};
+use fixshade::rasterizer::{rasterize_rows, ClipRect, RasterVertex, DRIFT};
 use proptest::prelude::*;
 
 /// `E_ab(p)`, y down.
@@ -82,4 +82,67 @@ proptest! {
         let rows = (y0, (y0 + h - 1).min(23));
         prop_assert_eq!(kernel(v, 24, rows), oracle(v, 24, rows));
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4096, ..ProptestConfig::default() })]
+
+    /// A span marked `bounded` keeps every attribute, at every pixel
+    /// (start plus k steps), within `DRIFT` of the vertex values' range:
+    /// the promise that lets the renderer skip per-span range checks.
+    /// Triangles up to 300 pixels across (so both bounded and unbounded
+    /// ones occur), slivers included, attributes up to 2^25, the rows of a
+    /// band or the whole viewport.
+    #[test]
+    fn bounded_spans_stay_within_the_drift(
+        v in [(-400i64..4800, -400i64..4800), (-400i64..4800, -400i64..4800), (-400i64..4800, -400i64..4800)],
+        attr in [[-(1i64 << 25)..1i64 << 25, 0i64..1 << 22], [-(1i64 << 25)..1i64 << 25, 0i64..1 << 22], [-(1i64 << 25)..1i64 << 25, 0i64..1 << 22]],
+        y0 in 0i32..300,
+        h in 1i32..300,
+    ) {
+        let rv: [RasterVertex<2>; 3] = core::array::from_fn(|k| RasterVertex { x: v[k].0, y: v[k].1, attr: attr[k] });
+        let vp = ClipRect::of_size(300, 300).unwrap();
+        let rows = (y0, (y0 + h - 1).min(299));
+        let mut bad = None;
+        rasterize_rows(&rv, vp, rows, false, |s| {
+            if !s.bounded {
+                return;
+            }
+            for i in 0..2 {
+                let lo = attr.iter().map(|a| a[i]).min().unwrap() - DRIFT;
+                let hi = attr.iter().map(|a| a[i]).max().unwrap() + DRIFT;
+                for k in 0..=(s.x1 - s.x0) as i64 {
+                    let a = s.start[i] + k * s.step[i];
+                    if !(lo..=hi).contains(&a) && bad.is_none() {
+                        bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
+                    }
+                }
+            }
+        });
+        prop_assert_eq!(bad, None);
+    }
+}
+
+/// The mark is given where it should be (else the property above would
+/// hold vacuously): a small triangle with gentle gradients is bounded, one
+/// wider than 256 pixels is not.
+#[test]
+fn small_gentle_triangles_are_bounded() {
+    let tri = |w: i64| {
+        [(8, 8), (8 + 16 * w, 8), (8, 8 + 16 * 40)].map(|(x, y)| RasterVertex {
+            x,
+            y,
+            attr: [x << 8, y << 8],
+        })
+    };
+    let vp = ClipRect::of_size(400, 400).unwrap();
+    let marks = |w: i64| {
+        let mut m = Vec::new();
+        rasterize_rows(&tri(w), vp, (0, 399), false, |s| m.push(s.bounded));
+        m
+    };
+    let small = marks(100);
+    assert!(!small.is_empty() && small.iter().all(|&b| b));
+    let wide = marks(300);
+    assert!(!wide.is_empty() && wide.iter().all(|&b| !b));
 }
