@@ -57,11 +57,12 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::Mesh;
-use crate::rasterizer::area2;
-use crate::rasterizer::RasterVertex;
+use heapless::Deque;
+
+use crate::rasterizer::{area2, RasterVertex, Walk};
 use crate::render::{
-    check_size, CacheCorners, CachedVertex, Corners, DrawStats, Frame, RenderError, Renderer,
-    ShadingMode,
+    check_size, CacheCorners, CachedVertex, Carry, CarryExtra, Corners, DrawStats, Frame, NoCarry,
+    RenderError, Renderer, ShadingMode,
 };
 use crate::span::BandSink;
 use crate::vector::{Unit3, Vec3};
@@ -485,10 +486,78 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                 }
             }
         }
-        let w = size.width;
+        let job = Job {
+            mesh,
+            h,
+            runs,
+            bounds: &bounds,
+            visible: &visible,
+        };
+        if X::CACHED {
+            let mut carry = CarryBuf {
+                q: Deque::new(),
+                incoming: 0,
+                tag: 0,
+            };
+            job.run::<M, X, _, _, _, _, _, _>(
+                &mut frame, cache, target, bands, depth, &mut stats, &mut carry,
+            )?;
+        } else {
+            job.run::<M, X, _, _, _, _, _, _>(
+                &mut frame,
+                cache,
+                target,
+                bands,
+                depth,
+                &mut stats,
+                &mut NoCarry,
+            )?;
+        }
+        Ok(stats)
+    }
+}
+
+/// A frame's band loop: what the first pass found.
+struct Job<'a, 'm> {
+    mesh: &'a Mesh<'m>,
+    h: u32,
+    runs: Runs,
+    bounds: &'a [(i32, i32); CHUNKS],
+    visible: &'a [u32; CHUNKS],
+}
+
+impl Job<'_, '_> {
+    /// Renders the bands top to bottom and hands each to `target`; a
+    /// triangle left unfinished at a band's end is resumed from `carry`
+    /// in the next band if it kept it, and set up again if not.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run<M, X, T, D, K, S, V, L>(
+        &self,
+        frame: &mut Frame<'_, '_, S, V, L>,
+        cache: &mut [BandVertex],
+        target: &mut T,
+        bands: &mut Bands,
+        depth: &mut D,
+        stats: &mut DrawStats,
+        carry: &mut K,
+    ) -> Result<(), RenderError<T::Error>>
+    where
+        M: ShadingMode,
+        X: VertexMode,
+        T: DrawTarget<Color = Rgb565>,
+        D: BandDepth,
+        K: BandCarry,
+        S: Specular,
+        V: Viewer,
+        L: LightSet,
+    {
+        let bb = target.bounding_box();
+        let (w, height) = (bb.size.width, bb.size.height);
+        let (indices, per) = (self.mesh.indices, self.runs.per);
         let mut y0 = 0u32;
-        while y0 < size.height {
-            let rows = h.min(size.height - y0);
+        while y0 < height {
+            let rows = self.h.min(height - y0);
             let (b0, b1) = (y0 as i32, (y0 + rows - 1) as i32);
             frame.rows = (b0, b1);
             let npx = (w * rows) as usize;
@@ -502,28 +571,40 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                 width: w,
                 y0: b0,
             };
-            for (r, &(lo, hi)) in bounds.iter().enumerate() {
+            carry.start_band();
+            for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
                 if hi < b0 || lo > b1 {
                     continue;
                 }
-                let end = ((r + 1) * runs.per).min(mesh.indices.len());
-                for (j, tri) in mesh.indices[r * runs.per..end].iter().enumerate() {
-                    if j < 32 && visible[r] & (1 << j) == 0 {
+                let end = ((r + 1) * per).min(indices.len());
+                for (j, tri) in indices[r * per..end].iter().enumerate() {
+                    if j < 32 && self.visible[r] & (1 << j) == 0 {
                         continue;
                     }
+                    let t = (r * per + j) as u32;
+                    if K::ON {
+                        carry.set_tag(t);
+                        if let Some((walk, extra)) = carry.take(t) {
+                            frame
+                                .resume::<M, _, _, _>(walk, extra, &mut sink, depth, stats, carry)
+                                .map_err(lift)?;
+                            continue;
+                        }
+                    }
                     let idx = tri.map(|i| i as usize);
-                    let res = if X::CACHED {
-                        band_triangle_cached::<M, _, _, _, _, _>(
-                            &frame, cache, idx, &mut sink, depth, &mut stats,
+                    let res = if !X::CACHED {
+                        band_triangle_recomputed::<M, _, _, _, _, _, _>(
+                            frame, idx, &mut sink, depth, stats, carry,
                         )
                     } else {
-                        band_triangle_recomputed::<M, _, _, _, _, _>(
-                            &frame, idx, &mut sink, depth, &mut stats,
+                        band_triangle_cached::<M, _, _, _, _, _, _>(
+                            frame, cache, idx, &mut sink, depth, stats, carry,
                         )
                     };
                     res.map_err(lift)?;
                 }
             }
+            carry.end_band();
             let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
             target
                 .fill_contiguous(
@@ -535,8 +616,104 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                 .map_err(RenderError::Target)?;
             y0 += rows;
         }
-        Ok(stats)
+        Ok(())
     }
+}
+
+/// How many unfinished triangles a band can hand to the next one with
+/// cached vertices (a triangle beyond them is set up again in the next
+/// band: the same pixels, more work). The store takes `CARRY ×` about 350
+/// bytes of stack; recomputed vertices keep none.
+pub const CARRY: usize = 32;
+
+/// A triangle left unfinished at the end of a band: its index, its walk
+/// (with room for any shading mode's attributes) and its spans' facts.
+#[derive(Clone, Copy, Debug)]
+struct Carried {
+    t: u32,
+    walk: Walk<7>,
+    extra: CarryExtra,
+}
+
+/// The band-to-band store, in triangle order: the entries the band above
+/// left (the first `incoming`), then those this band leaves.
+struct CarryBuf {
+    q: Deque<Carried, CARRY>,
+    incoming: usize,
+    /// The triangle being drawn.
+    tag: u32,
+}
+
+/// A [`Carry`] that the band loop drives.
+trait BandCarry: Carry {
+    /// A band begins: what is kept so far came from the band above.
+    fn start_band(&mut self);
+    /// Triangle `t` is drawn next (what `put` keeps belongs to it).
+    fn set_tag(&mut self, t: u32);
+    /// Triangle `t`'s walk if the band above kept it. Triangles are asked
+    /// in increasing order; entries for smaller ones are dropped.
+    fn take(&mut self, t: u32) -> Option<(Walk<7>, CarryExtra)>;
+    /// A band ends: what the band above left and this band did not take
+    /// is dropped.
+    fn end_band(&mut self);
+}
+
+impl Carry for CarryBuf {
+    const ON: bool = true;
+    #[inline(always)]
+    fn put<const N: usize>(&mut self, walk: Walk<N>, extra: CarryExtra) {
+        // Full: the triangle is set up again in the next band.
+        let _ = self.q.push_back(Carried {
+            t: self.tag,
+            walk: walk.resize(),
+            extra,
+        });
+    }
+}
+
+impl BandCarry for CarryBuf {
+    #[inline(always)]
+    fn start_band(&mut self) {
+        self.incoming = self.q.len();
+    }
+    #[inline(always)]
+    fn set_tag(&mut self, t: u32) {
+        self.tag = t;
+    }
+    #[inline(always)]
+    fn take(&mut self, t: u32) -> Option<(Walk<7>, CarryExtra)> {
+        while self.incoming > 0 {
+            if self.q.front()?.t > t {
+                return None;
+            }
+            let c = self.q.pop_front()?;
+            self.incoming -= 1;
+            if c.t == t {
+                return Some((c.walk, c.extra));
+            }
+        }
+        None
+    }
+    #[inline(always)]
+    fn end_band(&mut self) {
+        while self.incoming > 0 {
+            self.q.pop_front();
+            self.incoming -= 1;
+        }
+    }
+}
+
+impl BandCarry for NoCarry {
+    #[inline(always)]
+    fn start_band(&mut self) {}
+    #[inline(always)]
+    fn set_tag(&mut self, _: u32) {}
+    #[inline(always)]
+    fn take(&mut self, _: u32) -> Option<(Walk<7>, CarryExtra)> {
+        None
+    }
+    #[inline(always)]
+    fn end_band(&mut self) {}
 }
 
 /// Runs of consecutive triangles.
@@ -591,16 +768,18 @@ fn project3<S: Specular, V: Viewer, L: LightSet>(
 /// Draws triangle `idx` in the current band from the compact cache, after
 /// rejecting it by its rows.
 #[inline(always)]
-fn band_triangle_cached<M, P, D, S, V, L>(
+fn band_triangle_cached<M, P, D, S, V, L, K>(
     f: &Frame<'_, '_, S, V, L>,
     cache: &mut [BandVertex],
     idx: [usize; 3],
     sink: &mut P,
     depth: &mut D,
     stats: &mut DrawStats,
+    carry: &mut K,
 ) -> Result<(), RenderError<P::Error>>
 where
     M: ShadingMode,
+    K: Carry,
     P: crate::span::PixelSink,
     D: DepthTest,
     S: Specular,
@@ -615,21 +794,23 @@ where
             return Ok(());
         }
     }
-    f.triangle::<M, P, D, _>(&mut BandCorners { cache, idx }, sink, depth, stats)
+    f.triangle::<M, P, D, _, _>(&mut BandCorners { cache, idx }, sink, depth, stats, carry)
 }
 
 /// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
 /// in the current band.
 #[inline(always)]
-fn band_triangle_recomputed<M, P, D, S, V, L>(
+fn band_triangle_recomputed<M, P, D, S, V, L, K>(
     f: &Frame<'_, '_, S, V, L>,
     idx: [usize; 3],
     sink: &mut P,
     depth: &mut D,
     stats: &mut DrawStats,
+    carry: &mut K,
 ) -> Result<(), RenderError<P::Error>>
 where
     M: ShadingMode,
+    K: Carry,
     P: crate::span::PixelSink,
     D: DepthTest,
     S: Specular,
@@ -648,7 +829,7 @@ where
             return Ok(());
         }
     }
-    f.triangle::<M, P, D, _>(&mut c, sink, depth, stats)
+    f.triangle::<M, P, D, _, _>(&mut c, sink, depth, stats, carry)
 }
 
 /// An error of the band sink (memory, which cannot fail) as the target's.

@@ -215,10 +215,34 @@ impl Recip {
     }
 }
 
-/// A set-up triangle: the edges, the rows and columns it may cover, and its
-/// attribute planes.
+/// A triangle's scan conversion paused at a row: its edges there, the
+/// attribute values at the row's first column, and the rows it has left in
+/// the viewport.
+///
+/// [`Triangle::walk_rows`] gives it when a band ends above the triangle's
+/// last row; [`Walk::resume`] draws the next band's rows from it without a
+/// new set-up, with exactly the spans the uninterrupted walk gives there
+/// (the state is the walk's own: integers, stepped row by row). A sliver
+/// (whose spans start from the plane equations) does not pause.
+///
+/// ```
+/// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+/// let v = [(8, 8), (8, 300), (250, 8)].map(|(x, y)| RasterVertex { x, y, attr: [x * y] });
+/// let vp = ClipRect::of_size(16, 16).unwrap();
+/// let mut whole = Vec::new();
+/// Triangle::setup(&v, vp, true).unwrap().for_each_span(|s| whole.push((s.y, s.x0, s.x1, s.start)));
+/// // Rows 0..=4, then the rest resumed band by band without a set-up.
+/// let mut banded = Vec::new();
+/// let t = Triangle::setup_rows(&v, vp, (0, 4), true).unwrap();
+/// let mut walk = t.walk_rows(|s| banded.push((s.y, s.x0, s.x1, s.start)));
+/// for y0 in [5, 10, 15] {
+///     walk = walk.and_then(|w| w.resume((y0, y0 + 4), |s| banded.push((s.y, s.x0, s.x1, s.start))));
+/// }
+/// assert!(walk.is_none()); // the triangle's last row was drawn
+/// assert_eq!(whole, banded);
+/// ```
 #[derive(Clone, Copy, Debug)]
-pub struct Triangle<'v, const N: usize> {
+pub struct Walk<const N: usize> {
     /// The edges bounding the current row from the left and the right.
     left: Edge,
     right: Edge,
@@ -230,19 +254,29 @@ pub struct Triangle<'v, const N: usize> {
     switch: i64,
     x_lo: i64,
     x_hi: i64,
-    y_lo: i64,
-    y_hi: i64,
-    /// Attribute values at pixel (x_lo, y_lo) (`y_lo` the first drawn row).
-    origin: [i64; N],
+    /// The row the walk is at, and the triangle's last row in the viewport.
+    y: i64,
+    y_end: i64,
+    /// Attribute values at pixel (x_lo, y).
+    row: [i64; N],
     /// Per-pixel gradients along x.
     ddx: [i64; N],
     /// Per-pixel gradients along y.
     ddy: [i64; N],
+    /// Spans stay within [`DRIFT`] of the vertex values.
+    bounded: bool,
+}
+
+/// A set-up triangle: its walk at the first drawn row, the last row drawn
+/// (the band's), and what a sliver's span starts need.
+#[derive(Clone, Copy, Debug)]
+pub struct Triangle<'v, const N: usize> {
+    walk: Walk<N>,
+    /// The last row drawn.
+    y_hi: i64,
     /// Gradients too steep to step (a sliver): each span's start is
     /// evaluated from the plane equation instead.
     exact: bool,
-    /// Spans stay within [`DRIFT`] of the vertex values.
-    bounded: bool,
     recip: Recip,
     /// The caller's vertices (for the exact path), and whether orienting
     /// the triangle swapped the last two.
@@ -388,7 +422,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
         let y_lo = ((miny + 7) >> 4).max(clip.y0 as i64);
         let y_hi = ((maxy - 8) >> 4).min(clip.y1 as i64);
         // The rows drawn: the band's part of the viewport's rows.
-        let (r_lo, mut r_hi) = (y_lo.max(rows.0 as i64), y_hi.min(rows.1 as i64));
+        let (r_lo, mut y_end) = (y_lo.max(rows.0 as i64), y_hi);
         // Sort the edges into the left chain (dy < 0: `E ≥ 0` admits the
         // columns right of them) and the right chain (dy > 0). Within the
         // triangle's rows, the row's span lies between the two chains: one
@@ -420,9 +454,10 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 lines[nr] = line;
             } else if line.dx < 0 {
                 // ys < a.y: 16r + 8 ≤ a.y − 1.
-                r_hi = r_hi.min((line.a.1 - 9) >> 4);
+                y_end = y_end.min((line.a.1 - 9) >> 4);
             }
         }
+        let r_hi = y_end.min(rows.1 as i64);
         if x_lo > x_hi || r_lo > r_hi {
             return None;
         }
@@ -531,20 +566,23 @@ impl<'v, const N: usize> Triangle<'v, N> {
             }
         }
         Some(Triangle {
-            left,
-            right,
-            next,
-            next_left,
-            switch,
-            x_lo,
-            x_hi,
-            y_lo: r_lo,
+            walk: Walk {
+                left,
+                right,
+                next,
+                next_left,
+                switch,
+                x_lo,
+                x_hi,
+                y: r_lo,
+                y_end,
+                row: origin,
+                ddx,
+                ddy,
+                bounded,
+            },
             y_hi: r_hi,
-            origin,
-            ddx,
-            ddy,
             exact,
-            bounded,
             recip: r,
             verts: caller,
             swapped: facing == Facing::Front,
@@ -554,11 +592,86 @@ impl<'v, const N: usize> Triangle<'v, N> {
 
     /// Calls `f` with each non-empty span, top to bottom.
     #[inline(always)]
-    pub fn for_each_span(&self, mut f: impl FnMut(&Span<N>)) {
-        let mut row = self.origin;
+    pub fn for_each_span(self, f: impl FnMut(&Span<N>)) {
+        self.walk_rows(f);
+    }
+
+    /// As [`Triangle::for_each_span`], and then the walk paused below the
+    /// last row drawn if the triangle goes on below it (and is not a
+    /// sliver): what [`Walk::resume`] continues in the next band.
+    #[inline(always)]
+    pub fn walk_rows(self, f: impl FnMut(&Span<N>)) -> Option<Walk<N>> {
+        let Triangle {
+            mut walk,
+            y_hi,
+            exact,
+            recip,
+            verts,
+            swapped,
+            ..
+        } = self;
+        walk.rows(
+            y_hi,
+            exact,
+            |x, y| exact_start(verts, swapped, recip, x, y),
+            f,
+        );
+        (!exact && walk.y <= walk.y_end).then_some(walk)
+    }
+}
+
+impl<const N: usize> Walk<N> {
+    /// The same walk with `M` attributes: the first `min(N, M)` kept, any
+    /// others zero (a band keeps every shading mode's walks in one store).
+    #[inline(always)]
+    pub(crate) fn resize<const M: usize>(self) -> Walk<M> {
+        let fit = |a: [i64; N]| core::array::from_fn(|i| if i < N { a[i] } else { 0 });
+        Walk {
+            left: self.left,
+            right: self.right,
+            next: self.next,
+            next_left: self.next_left,
+            switch: self.switch,
+            x_lo: self.x_lo,
+            x_hi: self.x_hi,
+            y: self.y,
+            y_end: self.y_end,
+            row: fit(self.row),
+            ddx: fit(self.ddx),
+            ddy: fit(self.ddy),
+            bounded: self.bounded,
+        }
+    }
+
+    /// Draws the rows `rows.0 ..= rows.1` (a band) that the triangle has
+    /// left, stepping over any before `rows.0` without drawing; returns the
+    /// walk paused below `rows.1` if the triangle goes on below it.
+    #[inline(always)]
+    pub fn resume(mut self, rows: (i32, i32), f: impl FnMut(&Span<N>)) -> Option<Walk<N>> {
+        let (first, last) = (rows.0 as i64, rows.1 as i64);
+        if self.y < first {
+            self.rows(first - 1, false, |_, _| [0; N], |_| ());
+        }
+        self.rows(last, false, |_, _| [0; N], f);
+        (self.y <= self.y_end).then_some(self)
+    }
+
+    /// Walks the rows from `self.y` to `last` (and the triangle's last),
+    /// calling `f` with each non-empty span; a sliver's span starts come
+    /// from `exact_start`.
+    #[inline(always)]
+    fn rows(
+        &mut self,
+        last: i64,
+        exact: bool,
+        exact_start: impl Fn(i64, i64) -> [i64; N],
+        mut f: impl FnMut(&Span<N>),
+    ) {
+        let last = last.min(self.y_end);
+        let mut row = self.row;
         let (mut left, mut right) = (self.left, self.right);
-        let mut y = self.y_lo;
-        while y <= self.y_hi {
+        let mut y = self.y;
+        while y <= last {
             if y == self.switch {
                 let e = self.next.at(16 * y + 8);
                 if self.next_left {
@@ -571,8 +684,8 @@ impl<'v, const N: usize> Triangle<'v, N> {
             let hi = right.q.min(self.x_hi);
             if lo <= hi {
                 let mut start = row;
-                if self.exact {
-                    start = self.exact_start(lo, y);
+                if exact {
+                    start = exact_start(lo, y);
                 } else {
                     let off = lo - self.x_lo;
                     for (s, d) in start.iter_mut().zip(&self.ddx) {
@@ -588,7 +701,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
                     bounded: self.bounded,
                 });
             }
-            if !self.exact {
+            if !exact {
                 for (r, d) in row.iter_mut().zip(&self.ddy) {
                     *r += d;
                 }
@@ -597,26 +710,31 @@ impl<'v, const N: usize> Triangle<'v, N> {
             right.step();
             y += 1;
         }
+        (self.row, self.left, self.right, self.y) = (row, left, right, y);
     }
 }
 
-impl<const N: usize> Triangle<'_, N> {
-    /// The attributes at pixel `(x, y)` from the plane equations (a
-    /// sliver's span start; rare, so kept out of the span walk).
-    #[cold]
-    #[inline(never)]
-    fn exact_start(&self, x: i64, y: i64) -> [i64; N] {
-        let c = self.verts;
-        let v = if self.swapped {
-            [&c[0], &c[2], &c[1]]
-        } else {
-            [&c[0], &c[1], &c[2]]
-        };
-        let (sx, sy) = (16 * x + 8, 16 * y + 8);
-        let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
-        let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
-        core::array::from_fn(|i| plane_at(v, self.recip, i, e20, e01))
-    }
+/// The attributes at pixel `(x, y)` from the plane equations (a sliver's
+/// span start; rare, so kept out of the span walk); `swapped`: the
+/// triangle was oriented by swapping its last two vertices.
+#[cold]
+#[inline(never)]
+fn exact_start<const N: usize>(
+    c: &[RasterVertex<N>; 3],
+    swapped: bool,
+    recip: Recip,
+    x: i64,
+    y: i64,
+) -> [i64; N] {
+    let v = if swapped {
+        [&c[0], &c[2], &c[1]]
+    } else {
+        [&c[0], &c[1], &c[2]]
+    };
+    let (sx, sy) = (16 * x + 8, 16 * y + 8);
+    let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
+    let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
+    core::array::from_fn(|i| plane_at(v, recip, i, e20, e01))
 }
 
 /// Sets up triangle `v` and calls `f` with each of its spans inside `clip`,
@@ -661,6 +779,7 @@ pub fn rasterize_rows<const N: usize>(
     f: impl FnMut(&Span<N>),
 ) -> Option<Facing> {
     let t = Triangle::setup_rows(v, viewport, rows, cull)?;
+    let facing = t.facing;
     t.for_each_span(f);
-    Some(t.facing)
+    Some(facing)
 }

@@ -41,7 +41,7 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{area2, rasterize_rows, ClipRect, RasterVertex, Span, COORD_LIMIT, DRIFT};
+use crate::rasterizer::{area2, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
@@ -164,6 +164,40 @@ pub struct DrawStats {
     pub pixels: u32,
     /// Vertices lit.
     pub lit: u32,
+    /// Triangles that a band resumed from the band above without a new
+    /// set-up (the band renderer with cached vertices; each is also counted
+    /// in `drawn`).
+    pub carried: u32,
+}
+
+/// What a band keeps of a triangle it leaves unfinished besides its walk:
+/// the facts that its spans need.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CarryExtra {
+    /// The vertex depths are `DRIFT` inside the `u16` range.
+    pub(crate) z_inside: bool,
+    /// A flat triangle's colour, and as RGB565.
+    pub(crate) colour: Shade,
+    pub(crate) plain: u16,
+}
+
+/// Where a band keeps the triangles it leaves unfinished, so that the next
+/// band resumes them without a new set-up ([`crate::band`]); the whole
+/// frame keeps none ([`NoCarry`]).
+pub(crate) trait Carry {
+    /// Whether walks are kept at all (if not, no code for it is compiled).
+    const ON: bool;
+    /// Keeps a paused walk of the current triangle, if there is room.
+    fn put<const N: usize>(&mut self, walk: Walk<N>, extra: CarryExtra);
+}
+
+/// No triangle is kept.
+pub(crate) struct NoCarry;
+
+impl Carry for NoCarry {
+    const ON: bool = false;
+    #[inline(always)]
+    fn put<const N: usize>(&mut self, _: Walk<N>, _: CarryExtra) {}
 }
 
 const F_PROJECTED: u8 = 1;
@@ -353,7 +387,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
                 slot: idx,
                 vertex: idx,
             };
-            frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
+            frame.triangle::<M, P, D, _, _>(&mut corners, sink, depth, &mut stats, &mut NoCarry)?;
         }
         Ok(stats)
     }
@@ -662,12 +696,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
     /// Clips, culls, lights and rasterizes one triangle (its rows in
     /// `self.rows`).
-    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners>(
+    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners, K: Carry>(
         &self,
         c: &mut C,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
+        carry: &mut K,
     ) -> Result<(), RenderError<P::Error>> {
         let inside = [c.inside(0), c.inside(1), c.inside(2)];
         if !inside.iter().any(|&i| i) {
@@ -745,7 +780,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 let plain = RawU16::from(colour.to_rgb565()).into_inner();
                 stats.lit += 1;
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
-                self.fan(&verts[..count], stats, |sp, st| {
+                let extra = CarryExtra {
+                    z_inside,
+                    colour,
+                    plain,
+                };
+                self.fan(&verts[..count], stats, carry, extra, |sp, st| {
                     self.span_flat(sp, colour, plain, sink, depth, st, z_inside)
                 })
             }
@@ -762,7 +802,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         (b[2] * 31 + (1 << 15)) as i64,
                     ]
                 });
-                self.fan(&verts[..count], stats, |sp, st| {
+                let extra = CarryExtra {
+                    z_inside,
+                    ..CarryExtra::default()
+                };
+                self.fan(&verts[..count], stats, carry, extra, |sp, st| {
                     self.span_gouraud(sp, sink, depth, st, z_inside)
                 })
             }
@@ -783,7 +827,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         e[2] as i64,
                     ]
                 });
-                self.fan(&verts[..count], stats, |sp, st| {
+                let extra = CarryExtra {
+                    z_inside,
+                    ..CarryExtra::default()
+                };
+                self.fan(&verts[..count], stats, carry, extra, |sp, st| {
                     self.span_phong(sp, sink, depth, st, z_inside)
                 })
             }
@@ -818,12 +866,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`, calling `span` for
-    /// each span until it fails.
+    /// each span until it fails; an unclipped triangle that goes on below
+    /// the band is handed to `carry`.
     #[inline(always)]
-    fn fan<const N: usize, E>(
+    fn fan<const N: usize, E, K: Carry>(
         &self,
         verts: &[RasterVertex<N>],
         stats: &mut DrawStats,
+        carry: &mut K,
+        extra: CarryExtra,
         mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
     ) -> Result<(), E> {
         let mut res = Ok(());
@@ -839,17 +890,77 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
-            let drawn = rasterize_rows(tri, self.viewport, self.rows, false, |s| {
-                if res.is_ok() {
-                    res = span(s, stats);
-                }
-            });
-            if drawn.is_some() {
+            if let Some(t) = Triangle::setup_rows(tri, self.viewport, self.rows, false) {
                 stats.drawn += 1;
+                let rest = t.walk_rows(|s| {
+                    if res.is_ok() {
+                        res = span(s, stats);
+                    }
+                });
+                // A clipped polygon's pieces are not kept: the next band
+                // sets the triangle up again.
+                if let (true, 3, Some(w)) = (K::ON, verts.len(), rest) {
+                    carry.put(w, extra);
+                }
             }
             if res.is_err() {
                 break;
             }
+        }
+        res
+    }
+
+    /// Draws the current band's rows of a triangle that the band above
+    /// left unfinished (`walk`, kept by a [`Carry`]), and hands it on if it
+    /// goes on below this band.
+    pub(crate) fn resume<M: ShadingMode, P: PixelSink, D: DepthTest, K: Carry>(
+        &self,
+        walk: Walk<7>,
+        extra: CarryExtra,
+        sink: &mut P,
+        depth: &mut D,
+        stats: &mut DrawStats,
+        carry: &mut K,
+    ) -> Result<(), RenderError<P::Error>> {
+        let z = extra.z_inside;
+        match M::KIND {
+            ShadingKind::Flat => {
+                self.resume_walk::<1, _, _>(walk, extra, stats, carry, |sp, st| {
+                    self.span_flat(sp, extra.colour, extra.plain, sink, depth, st, z)
+                })
+            }
+            ShadingKind::Gouraud => {
+                self.resume_walk::<4, _, _>(walk, extra, stats, carry, |sp, st| {
+                    self.span_gouraud(sp, sink, depth, st, z)
+                })
+            }
+            ShadingKind::Phong => {
+                self.resume_walk::<7, _, _>(walk, extra, stats, carry, |sp, st| {
+                    self.span_phong(sp, sink, depth, st, z)
+                })
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn resume_walk<const N: usize, E, K: Carry>(
+        &self,
+        walk: Walk<7>,
+        extra: CarryExtra,
+        stats: &mut DrawStats,
+        carry: &mut K,
+        mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let mut res = Ok(());
+        stats.drawn += 1;
+        stats.carried += 1;
+        let rest = walk.resize::<N>().resume(self.rows, |s| {
+            if res.is_ok() {
+                res = span(s, stats);
+            }
+        });
+        if let (Ok(()), Some(w)) = (&res, rest) {
+            carry.put(w, extra);
         }
         res
     }
