@@ -684,7 +684,12 @@ impl<const N: usize> Walk<N> {
             let hi = right.q.min(self.x_hi);
             if lo <= hi {
                 let mut start = row;
-                if exact {
+                // `black_box` (an empty assembly statement) hides the flag
+                // from the optimiser: a loop unswitched on `exact` calls `f`
+                // from two places, and `f` (the whole span shader) is then
+                // not inlined on Cortex-M (QEMU count, S1 on the M4: 6.40 M
+                // instructions without it, 6.10 M with).
+                if core::hint::black_box(exact) {
                     start = exact_start(lo, y);
                 } else {
                     let off = lo - self.x_lo;
