@@ -637,9 +637,9 @@ impl Job<'_, '_> {
 /// band: the same pixels, more work). The store takes `CARRY × 352` bytes
 /// of stack (11 KB); recomputed vertices keep none. On S1 with 16-row
 /// bands, 32 entries hold 270 of the 294 triangles that cross a band
-/// boundary and bring the band frame to +11.0 % over the whole frame; 16
-/// entries +16.2 %, 24 +13.5 %, 64 (all 294) +10.0 % (callgrind,
-/// `band_cost probe`).
+/// boundary; when the store was added they brought the band frame to
+/// +11.0 % over the whole frame, against +16.2 % with 16 entries, +13.5 %
+/// with 24 and +10.0 % with 64 (all 294) (callgrind, `band_cost probe`).
 pub const CARRY: usize = 32;
 
 /// A triangle left unfinished at the end of a band: its index, its walk
