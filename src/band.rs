@@ -42,7 +42,7 @@
 //! # Resuming triangles
 //! With cached vertices, a triangle that goes on below a band is not set up
 //! again in the next one: the band keeps its paused walk (a
-//! [`Walk`](crate::rasterizer::Walk): edges, attribute values at the row,
+//! [`Walk`]: edges, attribute values at the row,
 //! gradients) and the next band draws its rows from there, in the same
 //! mesh order, with the same spans. The store holds [`CARRY`] triangles;
 //! one that finds it full, a sliver, or a triangle clipped by the near
