@@ -45,9 +45,9 @@
 //! [`Walk`]: edges, attribute values at the row,
 //! gradients) and the next band draws its rows from there, in the same
 //! mesh order, with the same spans. The store holds [`CARRY`] triangles;
-//! one that finds it full, a sliver, or a triangle clipped by the near
-//! plane is set up again in the next band instead (the same pixels, more
-//! work). [`DrawStats::carried`] counts the resumed triangles.
+//! one that finds it full, a sliver, or a triangle that the near plane
+//! cuts into a quadrilateral (drawn as two pieces) is set up again in the
+//! next band instead (the same pixels, more work). [`DrawStats::carried`] counts the resumed triangles.
 //!
 //! # Memory
 //! The caller provides the colour band (`W × h` `u16`), the depth band

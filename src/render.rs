@@ -897,8 +897,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         res = span(s, stats);
                     }
                 });
-                // A clipped polygon's pieces are not kept: the next band
-                // sets the triangle up again.
+                // A quadrilateral's two pieces (a triangle cut by the near
+                // plane) are not kept: the next band sets it up again.
                 if let (true, 3, Some(w)) = (K::ON, verts.len(), rest) {
                     carry.put(w, extra);
                 }
