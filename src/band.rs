@@ -55,7 +55,7 @@
 //! [`BandVertex`] per mesh vertex. A draw call keeps the run table
 //! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack, and in
 //! cached mode the store of resumable triangles ([`CARRY`] × 352 bytes:
-//! 11 KB).
+//! 16.5 KB).
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -635,12 +635,14 @@ impl Job<'_, '_> {
 /// How many unfinished triangles a band can hand to the next one with
 /// cached vertices (a triangle beyond them is set up again in the next
 /// band: the same pixels, more work). The store takes `CARRY × 352` bytes
-/// of stack (11 KB); recomputed vertices keep none. On S1 with 16-row
-/// bands, 32 entries hold 270 of the 294 triangles that cross a band
-/// boundary; when the store was added they brought the band frame to
-/// +11.0 % over the whole frame, against +16.2 % with 16 entries, +13.5 %
-/// with 24 and +10.0 % with 64 (all 294) (callgrind, `band_cost probe`).
-pub const CARRY: usize = 32;
+/// of stack (16.5 KB); recomputed vertices keep none. On S1 with 16-row
+/// bands, 294 triangles cross a band boundary. When the store was added,
+/// 32 entries brought the band frame to +11.0 % over the whole frame,
+/// against +16.2 % with 16 entries, +13.5 % with 24 and +10.0 % with 64
+/// (all 294). Once the whole frame culled before building its polygons
+/// (which the bands, culling in a pre-pass, did already), 32 entries gave
+/// +15.0 % and 48 give +13.9 % (callgrind, `band_cost probe`).
+pub const CARRY: usize = 48;
 
 /// A triangle left unfinished at the end of a band: its index, its walk
 /// (with room for any shading mode's attributes) and its spans' facts.

@@ -708,15 +708,28 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if !inside.iter().any(|&i| i) {
             return Ok(());
         }
-        // The polygon after near clipping (Sutherland–Hodgman, one plane).
-        let mut poly = [PolyVert::Orig(0); 4];
-        let mut win = [[0i64; 3]; 4];
-        let mut count = 0;
-        if inside.iter().all(|&i| i) {
-            poly[..3].copy_from_slice(&[PolyVert::Orig(0), PolyVert::Orig(1), PolyVert::Orig(2)]);
-            win[..3].copy_from_slice(&[c.win(0), c.win(1), c.win(2)]);
-            count = 3;
+        let (poly, win, count, a) = if inside.iter().all(|&i| i) {
+            // The common case, culled from its three window positions
+            // before anything else is built (S1 culls 1 618 of 2 208
+            // triangles: a 96-byte clear and two copies each spared on a
+            // Cortex-M4).
+            let w = [c.win(0), c.win(1), c.win(2)];
+            let a = area2(&w.map(|w| RasterVertex::<0> {
+                x: w[0],
+                y: w[1],
+                attr: [],
+            }));
+            if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&w) {
+                return Ok(());
+            }
+            let poly = [0, 1, 2, 0].map(PolyVert::Orig);
+            (poly, [w[0], w[1], w[2], w[0]], 3, a)
         } else {
+            // The polygon after near clipping (Sutherland–Hodgman, one
+            // plane).
+            let mut poly = [PolyVert::Orig(0); 4];
+            let mut win = [[0i64; 3]; 4];
+            let mut count = 0;
             stats.clipped += 1;
             let clip = [c.clip(self, 0), c.clip(self, 1), c.clip(self, 2)];
             let d = clip.map(|c| c[2] + c[3]);
@@ -745,25 +758,25 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     }
                 };
             }
-        }
-        // Facing is shared by every piece: decide it (and cull) once, from
-        // the first piece with area.
-        let mut a = 0;
-        for k in 1..count - 1 {
-            let probe = [0, k, k + 1].map(|j| RasterVertex::<0> {
-                x: win[j][0],
-                y: win[j][1],
-                attr: [],
-            });
-            a = area2(&probe);
-            if a != 0 {
-                break;
+            // Facing is shared by every piece: decided (and culled) once,
+            // from the first piece with area.
+            let mut a = 0;
+            for k in 1..count - 1 {
+                let probe = [0, k, k + 1].map(|j| RasterVertex::<0> {
+                    x: win[j][0],
+                    y: win[j][1],
+                    attr: [],
+                });
+                a = area2(&probe);
+                if a != 0 {
+                    break;
+                }
             }
-        }
-        // Negative area is a front face (y down).
-        if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&win[..count]) {
-            return Ok(());
-        }
+            if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&win[..count]) {
+                return Ok(());
+            }
+            (poly, win, count, a)
+        };
         let lit_back = a > 0 && self.r.options.two_sided;
         let poly = &poly[..count];
         // Depth inside the u16 range, with the drift of a bounded span to
