@@ -419,6 +419,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     }
 }
 
+/// The signed doubled area of the triangle of window positions `win[k]`,
+/// `k` in `corners` (see [`area2`]).
+#[inline(always)]
+fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
+    area2(&corners.map(|j| RasterVertex::<0> {
+        x: win[j][0],
+        y: win[j][1],
+        attr: [],
+    }))
+}
+
 /// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
 pub(crate) fn check_size<E>(size: Size) -> Result<(), RenderError<E>> {
     if size.width > MAX_TARGET_SIDE || size.height > MAX_TARGET_SIDE {
@@ -714,12 +725,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // triangles: a 96-byte clear and two copies each spared on a
             // Cortex-M4).
             let w = [c.win(0), c.win(1), c.win(2)];
-            let a = area2(&w.map(|w| RasterVertex::<0> {
-                x: w[0],
-                y: w[1],
-                attr: [],
-            }));
-            if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&w) {
+            let a = win_area(&w, [0, 1, 2]);
+            if self.rejects(a, &w) {
                 return Ok(());
             }
             let poly = [0, 1, 2, 0].map(PolyVert::Orig);
@@ -762,17 +769,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // from the first piece with area.
             let mut a = 0;
             for k in 1..count - 1 {
-                let probe = [0, k, k + 1].map(|j| RasterVertex::<0> {
-                    x: win[j][0],
-                    y: win[j][1],
-                    attr: [],
-                });
-                a = area2(&probe);
+                a = win_area(&win, [0, k, k + 1]);
                 if a != 0 {
                     break;
                 }
             }
-            if a == 0 || (a > 0 && self.r.options.cull) || !self.touches(&win[..count]) {
+            if self.rejects(a, &win[..count]) {
                 return Ok(());
             }
             (poly, win, count, a)
@@ -849,6 +851,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 })
             }
         }
+    }
+
+    /// Whether a polygon of signed doubled area `a` (negative: a front
+    /// face, y down) is dropped: no area, a culled back face, or no pixel
+    /// centre inside the target.
+    #[inline(always)]
+    fn rejects(&self, a: i64, win: &[[i64; 3]]) -> bool {
+        a == 0 || (a > 0 && self.r.options.cull) || !self.touches(win)
     }
 
     /// Whether the polygon's bounding box holds a pixel centre inside the
