@@ -148,6 +148,44 @@ pub struct Surface {
 /// This is the body of the sum in SPEC.md 3, shared by every light kind.
 #[inline(always)]
 pub fn add_light<S: Specular>(ctx: &Surface, l: Unit3, sf: u32, g: &Gains, acc: &mut [u32; 3]) {
+    add_light_with::<S>(ctx, l, sf, g, acc, |nl| specular_delta::<S>(ctx, l, nl));
+}
+
+/// As [`add_light`] with `sf = 1`, for Blinn–Phong with `V = (0, 0, 1)`
+/// (the infinite viewer), given `half = H = normalise(L + V)` computed
+/// once for the frame (`None` where `L + V = 0`): the same arithmetic on
+/// the same `H`, so the same colour, without a normalisation per vertex.
+#[inline(always)]
+pub(crate) fn add_light_half<S: Specular>(
+    ctx: &Surface,
+    l: Unit3,
+    half: Option<Unit3>,
+    g: &Gains,
+    acc: &mut [u32; 3],
+) {
+    add_light_with::<S>(ctx, l, FACTOR_ONE, g, acc, |_| {
+        half.map(|h| ctx.normal.half_dist_sq(h))
+    });
+}
+
+/// The half vector `normalise(L + (0, 0, 1))` of a light direction `l`
+/// under the infinite viewer (`None` where it is undefined).
+pub(crate) fn infinite_half(l: Unit3) -> Option<Unit3> {
+    let (lb, v) = (l.to_bits(), Unit3::Z.to_bits());
+    normalize([0, 1, 2].map(|i| lb[i] as i32 + v[i] as i32))
+}
+
+/// The body of [`add_light`]; `delta(N·L)` gives the specular base's
+/// `1 − x` (see [`specular_delta`]).
+#[inline(always)]
+fn add_light_with<S: Specular>(
+    ctx: &Surface,
+    l: Unit3,
+    sf: u32,
+    g: &Gains,
+    acc: &mut [u32; 3],
+    delta: impl FnOnce(i32) -> Option<u32>,
+) {
     let nl = ctx.normal.dot(l);
     if nl <= 0 || sf == 0 {
         return;
@@ -159,7 +197,7 @@ pub fn add_light<S: Specular>(ctx: &Surface, l: Unit3, sf: u32, g: &Gains, acc: 
         *a = a.saturating_add(gd.apply(diff));
     }
     if S::ENABLED && !ctx.view.is_zero() {
-        let Some(delta) = specular_delta::<S>(ctx, l, nl) else {
+        let Some(delta) = delta(nl) else {
             return;
         };
         let sp = pow_from_delta(delta, ctx.shininess) as u32;

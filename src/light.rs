@@ -25,7 +25,7 @@
 use fixed::types::{I40F24, U32F32};
 
 use crate::color::Rgb;
-use crate::illumination::{add_light, Gains, Surface, FACTOR_ONE};
+use crate::illumination::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
 use crate::material::Specular;
 use crate::normalize::{normalize, normalize_len};
 use crate::specular_table::{pow_from_delta, Exponent};
@@ -448,21 +448,30 @@ impl DirectionalLight {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedDirectional {
     l: Unit3,
+    /// `H` for the infinite viewer (`normalise(L + (0, 0, 1))`), the same
+    /// at every vertex, so computed here once.
+    half: Option<Unit3>,
     gains: Gains,
 }
 
 impl PreparedLights for PreparedDirectional {
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
-        add_light::<S>(ctx, self.l, FACTOR_ONE, &self.gains, acc);
+        if S::BLINN && ctx.view == Unit3::Z {
+            add_light_half::<S>(ctx, self.l, self.half, &self.gains, acc);
+        } else {
+            add_light::<S>(ctx, self.l, FACTOR_ONE, &self.gains, acc);
+        }
     }
 }
 
 impl LightSet for DirectionalLight {
     type Prepared = PreparedDirectional;
     fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedDirectional {
+        let l = dir_to_eye(view, self.direction);
         PreparedDirectional {
-            l: dir_to_eye(view, self.direction),
+            l,
+            half: infinite_half(l),
             gains: Gains::new(self.diffuse, self.specular, kd, ks),
         }
     }

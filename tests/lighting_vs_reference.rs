@@ -1120,3 +1120,75 @@ proptest! {
         }
     }
 }
+
+/// Blinn–Phong under the infinite viewer: the directional light's half
+/// vector, computed once when the light is prepared, gives bit for bit the
+/// colour of the general path ([`add_light`], which normalises `L + V` at
+/// every call), over random normals and directions, including a light
+/// straight behind the surface (`L = −V`, where `H` is undefined).
+#[test]
+fn directional_half_vector_prepared_once_is_the_per_vertex_one() {
+    use fixshade::illumination::{add_light, Gains, Surface};
+    use fixshade::normalize::normalize_len;
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut dirs: Vec<[f64; 3]> = vec![[0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
+    for _ in 0..60 {
+        dirs.push([next(), next(), next()]);
+    }
+    let (id, is) = (rgb([0.9, 0.7, 0.5]), rgb([1.0, 0.8, 0.6]));
+    let (kd, ks) = (rgb([0.8, 0.6, 0.4]), rgb([0.7, 0.7, 0.7]));
+    let mut checked = 0;
+    for &d in &dirs {
+        let Ok(dir) = unit_from_f64(d) else { continue };
+        let light = DirectionalLight {
+            direction: dir,
+            diffuse: id,
+            specular: is,
+        };
+        for shininess in [1u16, 32, 500] {
+            let material = Material::new()
+                .with_ambient(Rgb::BLACK)
+                .with_diffuse(kd)
+                .with_specular(BlinnPhong {
+                    color: ks,
+                    shininess: Exponent::from_int(shininess),
+                });
+            let lighting: Lighting<_, InfiniteViewer, _> =
+                Lighting::new(&material, Rgb::BLACK, &light, &Mat4::IDENTITY);
+            // The light's eye-space direction as the kernel prepares it.
+            let b = dir.to_bits().map(i32::from);
+            let l = normalize_len(Mat4::IDENTITY.transform_dir_wide(b))
+                .unwrap()
+                .0;
+            let gains = Gains::new(id, is, kd, ks);
+            for _ in 0..200 {
+                let Ok(n) = unit_from_f64([next(), next(), next()]) else {
+                    continue;
+                };
+                let ctx = Surface {
+                    position: Vec3::ZERO,
+                    normal: n,
+                    view: Unit3::Z,
+                    shininess: Exponent::from_int(shininess),
+                };
+                let mut acc = [0u32; 3];
+                add_light::<BlinnPhong>(&ctx, l, 1 << 15, &gains, &mut acc);
+                let general = acc.map(|c| c.min(1 << 16));
+                assert_eq!(
+                    lighting.shade(Vec3::ZERO, n).to_bits(),
+                    general,
+                    "light {d:?} normal {:?} n = {shininess}",
+                    n.to_bits()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 30_000, "{checked} cases");
+}
