@@ -82,6 +82,22 @@ proptest! {
         let rows = (y0, (y0 + h - 1).min(23));
         prop_assert_eq!(kernel(v, 24, rows), oracle(v, 24, rows));
     }
+
+    /// Tiny triangles (a box of at most a few pixel centres, which the
+    /// set-up tests one by one before anything else), whole and in bands
+    /// that cut them.
+    #[test]
+    fn tiny_triangles(
+        o in vertex(32),
+        d in [(0i64..40, 0i64..40), (0i64..40, 0i64..40), (0i64..40, 0i64..40)],
+        y0 in 0i64..24,
+        h in 1i64..3,
+    ) {
+        let v = d.map(|(x, y)| (o.0 + x, o.1 + y));
+        prop_assert_eq!(kernel(v, 24, (0, 23)), oracle(v, 24, (0, 23)));
+        let rows = (y0, (y0 + h - 1).min(23));
+        prop_assert_eq!(kernel(v, 24, rows), oracle(v, 24, rows));
+    }
 }
 
 proptest! {
