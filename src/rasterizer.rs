@@ -539,9 +539,14 @@ impl<'v, const N: usize> Triangle<'v, N> {
         let r = Recip::new(a);
         // Sample at the origin pixel, relative to each vertex.
         let (sx, sy) = (16 * x_lo + 8, 16 * y_lo + 8);
-        // λ1 ∝ E20(s), λ2 ∝ E01(s).
-        let e20 = (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x);
-        let e01 = (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x);
+        // λ1 ∝ E20(s), λ2 ∝ E01(s): for the plane equations, which a small
+        // triangle does not use.
+        let lambdas = || {
+            (
+                (v[0].x - v[2].x) * (sy - v[2].y) - (v[0].y - v[2].y) * (sx - v[2].x),
+                (v[1].x - v[0].x) * (sy - v[0].y) - (v[1].y - v[0].y) * (sx - v[0].x),
+            )
+        };
         let mut exact = false;
         // Small: bounding box within 256 pixels (2^12 sub-pixels) a side.
         let small = maxx - minx < 1 << 12 && maxy - miny < 1 << 12;
@@ -583,6 +588,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 let t = ddx[i] * (sx - v[0].x) + ddy[i] * (sy - v[0].y);
                 v[0].attr[i] + ((t + 8) >> 4)
             } else {
+                let (e20, e01) = lambdas();
                 plane_at(v, r, i, e20, e01)
             };
         }
