@@ -227,11 +227,36 @@ impl Recip {
         }
     }
 
-    /// As [`Recip::div`] for `|num| < 2⁶³`: one 64 × 64 → 128-bit multiply.
+    /// As [`Recip::div`] for `|num| < 2⁶³`: one 64 × 64 → 128-bit multiply
+    /// on 64-bit targets; on 32-bit ones [`Recip::div_i64_limbs`], the same
+    /// value from two 64-bit products.
     #[inline]
     fn div_i64(self, num: i64, up: u32) -> i128 {
+        if cfg!(target_pointer_width = "64") {
+            let sh = self.sh - up;
+            ((num as i128) * (self.m as i128) + (1i128 << (sh - 1))) >> sh
+        } else {
+            self.div_i64_limbs(num, up)
+        }
+    }
+
+    /// [`Recip::div_i64`] without a signed 128-bit multiply, which takes six
+    /// 64-bit multiplies (library calls on a Cortex-M0) where two suffice:
+    /// `|num| = n1·2³² + n0` and `m ≤ 2³²`, so `n0·m < 2⁶⁴` and
+    /// `n1·m < 2⁶³`, and `P = |num|·m < 2⁹⁵` is exact in `u128`. With
+    /// `h = 2^(sh−1)`, `⌊(−P + h)/2^sh⌋ = −⌊(P + h − 1)/2^sh⌋`: the same
+    /// rounding (half up) for either sign.
+    #[inline]
+    fn div_i64_limbs(self, num: i64, up: u32) -> i128 {
         let sh = self.sh - up;
-        ((num as i128) * (self.m as i128) + (1i128 << (sh - 1))) >> sh
+        let (n, m) = (num.unsigned_abs(), self.m as u64);
+        let p = ((((n >> 32) * m) as u128) << 32) + ((n & 0xFFFF_FFFF) * m) as u128;
+        let h = 1u128 << (sh - 1);
+        if num >= 0 {
+            ((p + h) >> sh) as i128
+        } else {
+            -(((p + h - 1) >> sh) as i128)
+        }
     }
 
     /// `round(num · 2^up / a)`; `|num| < 2⁹⁴` keeps the product below 2¹²⁶.
@@ -830,4 +855,57 @@ pub fn rasterize_rows<const N: usize>(
     let facing = t.facing;
     t.for_each_span(f);
     Some(facing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Recip;
+
+    /// The two-limb quotient of 32-bit targets equals the 128-bit one, for
+    /// areas and numerators across their ranges, both signs, and the
+    /// rounding ties (`num · m` a multiple of `2^(sh−1)`).
+    #[test]
+    fn limb_quotient_is_the_wide_one() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let wide = |r: Recip, num: i64, up: u32| {
+            let sh = r.sh - up;
+            ((num as i128) * (r.m as i128) + (1i128 << (sh - 1))) >> sh
+        };
+        let mut areas = vec![
+            1i64,
+            2,
+            3,
+            1 << 31,
+            (1 << 31) + 1,
+            1 << 40,
+            (1 << 60) - 1,
+            1 << 60,
+        ];
+        let mut nums = vec![0i64, 1, -1, i64::MAX, -i64::MAX, 1 << 47, -(1 << 47)];
+        for _ in 0..2000 {
+            areas.push((next() >> (4 + next() % 60)).max(1) as i64);
+            let n = (next() >> (1 + next() % 63)) as i64;
+            nums.push(if next() & 1 == 0 { n } else { -n });
+        }
+        for &a in &areas {
+            let r = Recip::new(a);
+            // Ties: num·m = ±k·2^(sh−1) when m is a power of two.
+            let ties = [1i64, 3, 5].map(|k| k << (r.sh.saturating_sub(33)).min(60));
+            for &num in nums.iter().chain(&ties).chain(&ties.map(|t| -t)) {
+                for up in [0, 4] {
+                    assert_eq!(
+                        r.div_i64_limbs(num, up),
+                        wide(r, num, up),
+                        "a {a} num {num} up {up}"
+                    );
+                }
+            }
+        }
+    }
 }
