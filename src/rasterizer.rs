@@ -32,6 +32,8 @@
 //! (`i128`); spans step from there. Within a target of at most 2¹³ pixels
 //! a side the stepping error stays below 2⁻⁴ of the attribute's unit.
 
+use core::ops::{Div, Rem, Sub};
+
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
 pub const SUBPIXEL_BITS: u32 = 4;
 /// The largest snapped coordinate magnitude, in 1/16 pixel.
@@ -168,6 +170,7 @@ impl EdgeLine {
     }
 
     /// [`EdgeLine::at`] in `i64`: two 64-bit divisions.
+    #[cfg_attr(target_pointer_width = "64", inline)]
     fn at_wide(self, ys: i64) -> Edge {
         let EdgeLine { a, dx, dy } = self;
         // |K| < 2^59 (coordinates within ±2^28).
@@ -218,7 +221,7 @@ impl EdgeLine {
         } else {
             (dx * t + dy * l - 8 * dy - 1, 16 * dx, 16 * dy)
         };
-        let (q, dq) = (floor_div32(n, den), floor_div32(dn, den));
+        let (q, dq) = (floor_div(n, den), floor_div(dn, den));
         Some(Edge {
             q: h + q as i64,
             r: (n - q * den) as i64,
@@ -242,23 +245,16 @@ impl Edge {
     }
 }
 
-/// ⌊a / b⌋ for `b > 0`.
+/// ⌊a / b⌋ for `b > 0`, in `i32` or `i64` (division truncates; a
+/// negative remainder means the quotient was rounded up).
 #[inline]
-fn floor_div(a: i64, b: i64) -> i64 {
+pub(crate) fn floor_div<T>(a: T, b: T) -> T
+where
+    T: Copy + PartialOrd + From<i8> + Div<Output = T> + Rem<Output = T> + Sub<Output = T>,
+{
     let q = a / b;
-    if (a % b) < 0 {
-        q - 1
-    } else {
-        q
-    }
-}
-
-/// ⌊a / b⌋ for `b > 0`, in `i32`.
-#[inline]
-fn floor_div32(a: i32, b: i32) -> i32 {
-    let q = a / b;
-    if (a % b) < 0 {
-        q - 1
+    if a % b < T::from(0) {
+        q - T::from(1)
     } else {
         q
     }

@@ -41,7 +41,9 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{area2, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT};
+use crate::rasterizer::{
+    area2, floor_div, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT,
+};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
@@ -551,17 +553,6 @@ enum PolyVert {
         num: i64,
         den: i64,
     },
-}
-
-/// Floor division for `b > 0`.
-#[inline]
-fn floor_div(a: i64, b: i64) -> i64 {
-    let q = a / b;
-    if a % b < 0 {
-        q - 1
-    } else {
-        q
-    }
 }
 
 /// `round(x · num / den)` for `0 ≤ num ≤ den`, `den > 0`, in `i128`
