@@ -286,17 +286,23 @@ impl Recip {
         }
     }
 
-    /// As [`Recip::div`] for `|num| < 2⁶³`: one 64 × 64 → 128-bit multiply
-    /// on 64-bit targets; on 32-bit ones [`Recip::div_i64_limbs`], the same
-    /// value from two 64-bit products.
+    /// As [`Recip::div`] for `|num| < 2⁶³`: [`Recip::div_i64_wide`] on
+    /// 64-bit targets, [`Recip::div_i64_limbs`] (the same value) on 32-bit
+    /// ones.
     #[inline]
     fn div_i64(self, num: i64, up: u32) -> i128 {
         if cfg!(target_pointer_width = "64") {
-            let sh = self.sh - up;
-            ((num as i128) * (self.m as i128) + (1i128 << (sh - 1))) >> sh
+            self.div_i64_wide(num, up)
         } else {
             self.div_i64_limbs(num, up)
         }
+    }
+
+    /// [`Recip::div_i64`] as one signed 64 × 64 → 128-bit multiply.
+    #[inline]
+    fn div_i64_wide(self, num: i64, up: u32) -> i128 {
+        let sh = self.sh - up;
+        ((num as i128) * (self.m as i128) + (1i128 << (sh - 1))) >> sh
     }
 
     /// [`Recip::div_i64`] without a signed 128-bit multiply, which takes six
@@ -920,19 +926,24 @@ pub fn rasterize_rows<const N: usize>(
 mod tests {
     use super::{EdgeLine, Recip};
 
+    /// A xorshift generator: reproducible operands without a dependency.
+    fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        }
+    }
+
     /// The 32-bit edge set-up of 32-bit targets gives the 64-bit one's
     /// DDA wherever it applies: random edges of every slope and sign,
     /// vertices anywhere on the sub-pixel grid (negative too), samples
     /// near and at the limits.
     #[test]
     fn narrow_edge_is_the_wide_one() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |m: i64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % (2 * m as u64 + 1)) as i64 - m
-        };
+        let mut bits = xorshift(0x2545_f491_4f6c_dd1d);
+        let mut next = move |m: i64| (bits() % (2 * m as u64 + 1)) as i64 - m;
         let mut narrow = 0;
         for _ in 0..200_000 {
             let a = (next(1 << 28), next(1 << 28));
@@ -955,17 +966,7 @@ mod tests {
     /// rounding ties (`num · m` a multiple of `2^(sh−1)`).
     #[test]
     fn limb_quotient_is_the_wide_one() {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
-        let wide = |r: Recip, num: i64, up: u32| {
-            let sh = r.sh - up;
-            ((num as i128) * (r.m as i128) + (1i128 << (sh - 1))) >> sh
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
         let mut areas = vec![
             1i64,
             2,
@@ -990,7 +991,7 @@ mod tests {
                 for up in [0, 4] {
                     assert_eq!(
                         r.div_i64_limbs(num, up),
-                        wide(r, num, up),
+                        r.div_i64_wide(num, up),
                         "a {a} num {num} up {up}"
                     );
                 }
