@@ -7,6 +7,7 @@
 //! `I40F24`: at most `2³¹ · 2⁷ ≈ 2³⁸` raw for a coefficient below 2⁷).
 
 use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
+use crate::widening::mul_i32;
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -282,7 +283,7 @@ impl ProjectionCoeffs {
     #[inline]
     pub fn clip(&self, e: Vec3) -> [i64; 4] {
         let b = e.to_bits();
-        let mul = |c: i32, v: i32| (c as i64 * v as i64 + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
+        let mul = |c: i32, v: i32| (mul_i32(c, v) + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
         let w = if self.perspective {
             -(b[2] as i64)
         } else {

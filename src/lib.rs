@@ -19,6 +19,7 @@ pub mod scene_kernel;
 pub mod span;
 pub mod specular_table;
 pub mod vector;
+mod widening;
 
 pub use color::{Rgb, Shade};
 pub use illumination::Lighting;

@@ -34,6 +34,8 @@
 
 use core::ops::{Div, Rem, Sub};
 
+use crate::widening::{mul_by_narrow, mul_narrow, mul_u32};
+
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
 pub const SUBPIXEL_BITS: u32 = 4;
 /// The largest snapped coordinate magnitude, in 1/16 pixel.
@@ -116,9 +118,9 @@ fn covers_any<const N: usize>(v: [&RasterVertex<N>; 3], xs: (i64, i64), ys: (i64
     (ys.0..=ys.1).any(|y| {
         (xs.0..=xs.1).any(|x| {
             let (px, py) = (16 * x + 8, 16 * y + 8);
-            edges
-                .iter()
-                .all(|&(ax, ay, dx, dy, bias)| dx * (py - ay) - dy * (px - ax) + bias > 0)
+            edges.iter().all(|&(ax, ay, dx, dy, bias)| {
+                mul_narrow(dx, py - ay) - mul_narrow(dy, px - ax) + bias > 0
+            })
         })
     })
 }
@@ -315,7 +317,9 @@ impl Recip {
     fn div_i64_limbs(self, num: i64, up: u32) -> i128 {
         let sh = self.sh - up;
         let (n, m) = (num.unsigned_abs(), self.m as u64);
-        let p = ((((n >> 32) * m) as u128) << 32) + ((n & 0xFFFF_FFFF) * m) as u128;
+        // x·m for x < 2^32 and m ≤ 2^32 (m = 2^32 has a zero low word).
+        let by_m = |x: u64| mul_u32(x as u32, m as u32) + if m >> 32 != 0 { x << 32 } else { 0 };
+        let p = ((by_m(n >> 32) as u128) << 32) + by_m(n & 0xFFFF_FFFF) as u128;
         let h = 1u128 << (sh - 1);
         if num >= 0 {
             ((p + h) >> sh) as i128
@@ -650,13 +654,22 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 // |d| < 2^34, coordinate differences < 2^12: below 2^47;
                 // divided by an area of at least 1 and scaled by 16, the
                 // gradients stay below 2^51.
-                let nx = d1 * (v[2].y - v[0].y) + d2 * (v[0].y - v[1].y);
-                let ny = d1 * (v[0].x - v[2].x) + d2 * (v[1].x - v[0].x);
+                let m = mul_by_narrow;
+                let nx = m(d1, v[2].y - v[0].y) + m(d2, v[0].y - v[1].y);
+                let ny = m(d1, v[0].x - v[2].x) + m(d2, v[1].x - v[0].x);
                 (
                     r.div_i64(nx, SUBPIXEL_BITS) as i64,
                     r.div_i64(ny, SUBPIXEL_BITS) as i64,
                 )
             } else {
+                // The reciprocal through `black_box`: else LLVM hoists
+                // `m` times the coordinate differences (four i128
+                // multiplies: to it loop-invariant and cheap) out of the
+                // attribute loop and computes them for every triangle,
+                // small ones included (callgrind, S3 on x86-64: 0.2 M
+                // instructions a frame; QEMU, S1 on the Cortex-M0, where
+                // they are 24 library calls a triangle: 0.7 M).
+                let r = core::hint::black_box(r);
                 // Below 2^65: i128.
                 let (d1, d2) = (d1 as i128, d2 as i128);
                 let nx = d1 * (v[2].y - v[0].y) as i128 + d2 * (v[0].y - v[1].y) as i128;
@@ -675,10 +688,11 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 // 256 px (4096 sub-pixels) of it, |gradient| ≤ 2^40, so the
                 // products stay below 2^53; the gradients' rounding (½ unit)
                 // moves the result by at most 128 units.
-                let t = ddx[i] * (sx - v[0].x) + ddy[i] * (sy - v[0].y);
+                let t = mul_by_narrow(ddx[i], sx - v[0].x) + mul_by_narrow(ddy[i], sy - v[0].y);
                 v[0].attr[i] + ((t + 8) >> 4)
             } else {
-                let (e20, e01) = lambdas();
+                // (As above: not hoisted.)
+                let (e20, e01) = core::hint::black_box(lambdas)();
                 plane_at(v, r, i, e20, e01)
             };
         }
@@ -827,7 +841,7 @@ impl<const N: usize> Walk<N> {
                 } else {
                     let off = lo - self.x_lo;
                     for (s, d) in start.iter_mut().zip(&self.ddx) {
-                        *s += d * off;
+                        *s += mul_by_narrow(*d, off);
                     }
                 }
                 f(&Span {

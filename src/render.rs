@@ -42,13 +42,14 @@ use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::rasterizer::{
-    area2, floor_div, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT,
+    floor_div, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT,
 };
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
 };
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
+use crate::widening::{mul_by_narrow, mul_narrow};
 
 /// Which shading mode a type selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -425,11 +426,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
 /// `k` in `corners` (see [`area2`]).
 #[inline(always)]
 fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
-    area2(&corners.map(|j| RasterVertex::<0> {
-        x: win[j][0],
-        y: win[j][1],
-        attr: [],
-    }))
+    let [a, b, c] = corners.map(|j| win[j]);
+    // Window positions are within ±2^28 (`window` clamps them): the
+    // differences fit i32, the products 2^58.
+    mul_narrow(b[0] - a[0], c[1] - a[1]) - mul_narrow(b[1] - a[1], c[0] - a[0])
 }
 
 /// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
@@ -657,8 +657,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let (hw, hh) = (8 * self.w, 8 * self.h);
         // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w).
-        let x = floor_div(2 * c[0] * hw + w, 2 * w) + hw;
-        let y = floor_div(-2 * c[1] * hh + w, 2 * w) + hh;
+        let x = floor_div(mul_by_narrow(2 * c[0], hw) + w, 2 * w) + hw;
+        let y = floor_div(mul_by_narrow(-2 * c[1], hh) + w, 2 * w) + hh;
         let z = floor_div(2 * c[2] * (1 << 23) + w, 2 * w) + (1 << 23);
         [
             x.clamp(-COORD_LIMIT, COORD_LIMIT),

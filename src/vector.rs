@@ -27,6 +27,7 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
+use crate::widening::mul_i32;
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
@@ -370,9 +371,9 @@ impl Mat4 {
             let m = &self.m[r];
             // Each product < 2^62 raw; three plus the translation (< 2^55
             // after the shift up) are summed saturating.
-            let acc = (m[0] as i64 * b[0] as i64)
-                .saturating_add(m[1] as i64 * b[1] as i64)
-                .saturating_add(m[2] as i64 * b[2] as i64)
+            let acc = mul_i32(m[0], b[0])
+                .saturating_add(mul_i32(m[1], b[1]))
+                .saturating_add(mul_i32(m[2], b[2]))
                 .saturating_add((m[3] as i64) << COORD_FRAC);
             sat_shift24(acc)
         };

@@ -1,0 +1,17 @@
+//! Sets `fixshade_soft_mul64` for targets whose cores have no 32 × 32 →
+//! 64-bit multiply instruction (ARMv6-M: Cortex-M0 and M0+, the RP2040's
+//! core; ARMv8-M Baseline: Cortex-M23). There a product of two `i64` is a
+//! call to `__aeabi_lmul` (about 40 instructions), and [`widening`]'s
+//! products of 32-bit operands are built from 16 × 16 → 32-bit ones instead
+//! (one `muls` each). Stable Rust has no `target_feature` for this, so the
+//! target's name decides, as `cortex-m`'s build script does for `armv6m`.
+//!
+//! [`widening`]: src/widening.rs
+fn main() {
+    println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
+    println!("cargo:rerun-if-changed=build.rs");
+    let target = std::env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
+        println!("cargo:rustc-cfg=fixshade_soft_mul64");
+    }
+}

@@ -1,0 +1,152 @@
+//! Products wider than their operands, cheap on every core.
+//!
+//! On a Cortex-M0/M0+ (and M23) there is no 32 × 32 → 64-bit multiply
+//! instruction: `a as i64 * b as i64` is a call to `__aeabi_lmul`, a full
+//! 64 × 64-bit product of about 40 instructions. These functions build the
+//! same products from 16 × 16 → 32-bit multiplies (one `muls` each), inline,
+//! on those targets (the build script sets `fixshade_soft_mul64`), and are
+//! the plain product everywhere else. Both forms are compiled on every
+//! target and the unit tests hold the limb forms to the plain products.
+
+/// `a · b`, exactly (`|a · b| ≤ 2⁶²`).
+#[inline(always)]
+pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
+    if cfg!(fixshade_soft_mul64) {
+        mul_i32_limbs(a, b)
+    } else {
+        a as i64 * b as i64
+    }
+}
+
+/// `a · b`, exactly (below 2⁶⁴).
+#[inline(always)]
+pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
+    if cfg!(fixshade_soft_mul64) {
+        mul_u32_limbs(a, b)
+    } else {
+        a as u64 * b as u64
+    }
+}
+
+/// `a · b` for `a` and `b` within `i32`'s range, as `i64`s (the plain
+/// product on 64-bit targets, where narrowing them first would cost
+/// instructions; a debug build checks the range).
+#[inline(always)]
+pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
+    if cfg!(fixshade_soft_mul64) {
+        debug_assert!(i32::try_from(a).is_ok() && i32::try_from(b).is_ok());
+        mul_i32_limbs(a as i32, b as i32)
+    } else {
+        a * b
+    }
+}
+
+/// `a · b` for `b` within `i32`'s range and a product that fits `i64` (a
+/// debug build checks both).
+#[inline(always)]
+pub(crate) fn mul_by_narrow(a: i64, b: i64) -> i64 {
+    if cfg!(fixshade_soft_mul64) {
+        debug_assert!(i32::try_from(b).is_ok());
+        let p = mul_i64_i32_limbs(a, b as i32);
+        debug_assert_eq!(Some(p), a.checked_mul(b));
+        p
+    } else {
+        a * b
+    }
+}
+
+/// [`mul_i32`] from 16-bit halves: `a = aₕ·2¹⁶ + aₗ` with `aₕ` signed
+/// (`|aₕ| ≤ 2¹⁵`) and `0 ≤ aₗ < 2¹⁶`, likewise `b`. Each partial product
+/// fits 32 bits: `|aₕbₕ| ≤ 2³⁰`, `|aₕbₗ| < 2³¹` (so `aₕbₗ + aₗbₕ` is summed
+/// in `i64`), `aₗbₗ < 2³²` unsigned.
+#[inline(always)]
+pub(crate) fn mul_i32_limbs(a: i32, b: i32) -> i64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let mid = (ah * bl) as i64 + (al * bh) as i64;
+    (((ah * bh) as i64) << 32) + (mid << 16) + (al as u32 * bl as u32) as i64
+}
+
+/// [`mul_u32`] from 16-bit halves: `aₗbₗ + (aₕbₗ + aₗbₕ)·2¹⁶ + aₕbₕ·2³²`,
+/// each partial product below 2³², the middle sum's carry kept.
+#[inline(always)]
+pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let (mid, carry) = (ah * bl).overflowing_add(al * bh);
+    let hi = ((ah * bh) as u64 + ((carry as u64) << 16)) << 32;
+    hi + (al * bl) as u64 + ((mid as u64) << 16)
+}
+
+/// [`mul_by_narrow`] modulo 2⁶⁴ from 32-bit limbs: with `a = aₕ·2³² + aₗ`
+/// (`aₗ` unsigned) and `b` read as unsigned (`b + 2³²` when negative),
+/// `a·b ≡ aₗ·b_u + (aₕ·b − [b < 0]·aₗ)·2³²`, and only the low 32 bits of
+/// the second term matter.
+#[inline(always)]
+pub(crate) fn mul_i64_i32_limbs(a: i64, b: i32) -> i64 {
+    let (ah, al) = ((a >> 32) as i32, a as u32);
+    let p = mul_u32_limbs(al, b as u32);
+    let hi = ((p >> 32) as u32)
+        .wrapping_add(ah.wrapping_mul(b) as u32)
+        .wrapping_sub((b >> 31) as u32 & al);
+    (((hi as u64) << 32) | (p & 0xFFFF_FFFF)) as i64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{mul_i32_limbs, mul_i64_i32_limbs, mul_u32_limbs};
+
+    /// Edge operands and xorshift ones of every magnitude.
+    fn operands() -> impl Iterator<Item = u64> {
+        let edges = [
+            0u64,
+            1,
+            0xFFFF,
+            0x1_0000,
+            0x7FFF_FFFF,
+            0x8000_0000,
+            0xFFFF_FFFF,
+        ];
+        let edges = edges.into_iter().flat_map(|e| [e, e.wrapping_neg()]);
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let random = (0..20_000).map(move |i| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Magnitudes from 1 bit to 64.
+            x >> (i % 64)
+        });
+        edges.chain(random)
+    }
+
+    #[test]
+    fn limb_products_are_the_plain_ones() {
+        let ops: Vec<u64> = operands().collect();
+        for (k, &a) in ops.iter().enumerate() {
+            // Each operand against its neighbours and a few far ones.
+            for &b in ops
+                .iter()
+                .skip(k.saturating_sub(3))
+                .take(7)
+                .chain(&ops[..14])
+            {
+                let (a32, b32) = (a as i32, b as i32);
+                assert_eq!(
+                    mul_i32_limbs(a32, b32),
+                    a32 as i64 * b32 as i64,
+                    "{a32} {b32}"
+                );
+                assert_eq!(
+                    mul_u32_limbs(a as u32, b as u32),
+                    (a as u32) as u64 * (b as u32) as u64
+                );
+                let a64 = a as i64;
+                assert_eq!(
+                    mul_i64_i32_limbs(a64, b32),
+                    a64.wrapping_mul(b32 as i64),
+                    "{a64} {b32}"
+                );
+            }
+        }
+    }
+}
