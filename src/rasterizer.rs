@@ -32,7 +32,7 @@
 //! (`i128`); spans step from there. Within a target of at most 2¹³ pixels
 //! a side the stepping error stays below 2⁻⁴ of the attribute's unit.
 
-use core::ops::{Div, Rem, Sub};
+use core::ops::{Add, Div, Rem, Sub};
 
 use crate::widening::{mul_by_narrow, mul_narrow, mul_u32};
 
@@ -95,7 +95,8 @@ pub enum Facing {
 /// front face (counter-clockwise in NDC; window y points down).
 #[inline]
 pub fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
-    (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x)
+    // Coordinates within ±2^28: differences within ±2^29.
+    mul_narrow(v[1].x - v[0].x, v[2].y - v[0].y) - mul_narrow(v[1].y - v[0].y, v[2].x - v[0].x)
 }
 
 /// The most pixel centres a triangle's box may hold for
@@ -247,18 +248,62 @@ impl Edge {
     }
 }
 
-/// ⌊a / b⌋ for `b > 0`, in `i32` or `i64` (division truncates; a
-/// negative remainder means the quotient was rounded up).
-#[inline]
-pub(crate) fn floor_div<T>(a: T, b: T) -> T
-where
-    T: Copy + PartialOrd + From<i8> + Div<Output = T> + Rem<Output = T> + Sub<Output = T>,
+/// The operations [`floor_div`] needs: `i32` and `i64`.
+pub(crate) trait DivInt:
+    Copy
+    + PartialOrd
+    + From<i8>
+    + Add<Output = Self>
+    + Div<Output = Self>
+    + Rem<Output = Self>
+    + Sub<Output = Self>
 {
+}
+
+impl<T> DivInt for T where
+    T: Copy
+        + PartialOrd
+        + From<i8>
+        + Add<Output = T>
+        + Div<Output = T>
+        + Rem<Output = T>
+        + Sub<Output = T>
+{
+}
+
+/// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
+/// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
+/// [`floor_div_rem`] (the same value).
+#[inline]
+pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
+    if cfg!(fixshade_soft_mul64) {
+        floor_div_shifted(a, b)
+    } else {
+        floor_div_rem(a, b)
+    }
+}
+
+/// [`floor_div`] from the remainder: division truncates, and a negative
+/// remainder means the quotient was rounded up.
+#[inline]
+fn floor_div_rem<T: DivInt>(a: T, b: T) -> T {
     let q = a / b;
     if a % b < T::from(0) {
         q - T::from(1)
     } else {
         q
+    }
+}
+
+/// [`floor_div`] without the remainder, which LLVM takes as `a − q·b` (a
+/// call to `__aeabi_lmul` on a Cortex-M0): a negative `a` is divided as
+/// `a − (b − 1)`, whose truncated quotient is the floor.
+#[inline]
+fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
+    if a < T::from(0) {
+        (a - b + T::from(1)) / b
+    } else {
+        a / b
     }
 }
 
@@ -584,10 +629,11 @@ impl<'v, const N: usize> Triangle<'v, N> {
         }
         // A box of at most TINY pixel centres, all in the rows drawn, is
         // tested centre by centre before the set-up: a fifth of S3's
-        // triangles that reach here cover none.
+        // triangles that reach here cover none. (The box lies within the
+        // vertices' box: each side below 2^26 pixels.)
         if r_lo == y_lo
             && r_hi == y_end
-            && (x_hi - x_lo + 1) * (r_hi - r_lo + 1) <= TINY
+            && mul_narrow(x_hi - x_lo + 1, r_hi - r_lo + 1) <= TINY
             && !covers_any(v, (x_lo, x_hi), (r_lo, r_hi))
         {
             return None;
@@ -938,7 +984,7 @@ pub fn rasterize_rows<const N: usize>(
 
 #[cfg(test)]
 mod tests {
-    use super::{EdgeLine, Recip};
+    use super::{floor_div_rem, floor_div_shifted, EdgeLine, Recip};
 
     /// A xorshift generator: reproducible operands without a dependency.
     fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
@@ -973,6 +1019,31 @@ mod tests {
             }
         }
         assert!(narrow > 100_000, "{narrow}");
+    }
+
+    /// The floor division of the Cortex-M0 (no remainder) is the one that
+    /// takes the remainder, in `i64` and `i32`: numerators of both signs and
+    /// every magnitude, exact multiples and their neighbours, divisors from
+    /// 1 up.
+    #[test]
+    fn shifted_floor_division_is_the_remainder_one() {
+        let mut next = xorshift(0x5851_f42d_4c95_7f2d);
+        for _ in 0..100_000 {
+            let b = (next() >> (1 + next() % 62)).max(1) as i64;
+            let q = (next() >> (1 + next() % 63)) as i64 / b;
+            let sign = if next() & 1 == 0 { 1 } else { -1 };
+            for a in [sign * q * b - 1, sign * q * b, sign * q * b + 1] {
+                if a.checked_sub(b).is_none() {
+                    continue;
+                }
+                assert_eq!(floor_div_shifted(a, b), floor_div_rem(a, b), "{a} / {b}");
+                assert_eq!(floor_div_rem(a, b), a.div_euclid(b), "{a} / {b}");
+                let (a32, b32) = (a as i32, (b as i32).max(1));
+                if a32.checked_sub(b32).is_some() {
+                    assert_eq!(floor_div_shifted(a32, b32), floor_div_rem(a32, b32));
+                }
+            }
+        }
     }
 
     /// The two-limb quotient of 32-bit targets equals the 128-bit one, for

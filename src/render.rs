@@ -648,7 +648,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// 5): `X = ⌊x_w·16 + ½⌋`.
     ///
     /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
-    /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `2·x_c·8W < 2⁶³`.
+    /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `|2·x_c·8W| < 2⁶²`;
+    /// with `0 < w < 2³²`, each numerator and it minus the divisor `2w`
+    /// ([`floor_div`]'s condition) stay within `i64`.
     #[inline]
     pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
         let w = c[3];
