@@ -983,11 +983,11 @@ pub fn rasterize_rows<const N: usize>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::{floor_div_rem, floor_div_shifted, EdgeLine, Recip};
 
     /// A xorshift generator: reproducible operands without a dependency.
-    fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+    pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
         move || {
             x ^= x << 13;
             x ^= x >> 7;

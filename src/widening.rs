@@ -95,6 +95,7 @@ pub(crate) fn mul_i64_i32_limbs(a: i64, b: i32) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::{mul_i32_limbs, mul_i64_i32_limbs, mul_u32_limbs};
+    use crate::rasterizer::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
     fn operands() -> impl Iterator<Item = u64> {
@@ -108,14 +109,9 @@ mod tests {
             0xFFFF_FFFF,
         ];
         let edges = edges.into_iter().flat_map(|e| [e, e.wrapping_neg()]);
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
-        let random = (0..20_000).map(move |i| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            // Magnitudes from 1 bit to 64.
-            x >> (i % 64)
-        });
+        let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
+        // Magnitudes from 1 bit to 64.
+        let random = (0..20_000).map(move |i| next() >> (i % 64));
         edges.chain(random)
     }
 
