@@ -423,7 +423,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
 }
 
 /// The signed doubled area of the triangle of window positions `win[k]`,
-/// `k` in `corners` (see [`area2`]).
+/// `k` in `corners` (see [`area2`](crate::rasterizer::area2)).
 #[inline(always)]
 fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
     let [a, b, c] = corners.map(|j| win[j]);

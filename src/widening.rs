@@ -6,7 +6,10 @@
 //! same products from 16 × 16 → 32-bit multiplies (one `muls` each), inline,
 //! on those targets (the build script sets `fixshade_soft_mul64`), and are
 //! the plain product everywhere else. Both forms are compiled on every
-//! target and the unit tests hold the limb forms to the plain products.
+//! target and the unit tests hold the limb forms to the plain products;
+//! CI also runs the whole test suite on the host with the limb forms
+//! (`RUSTFLAGS="--cfg fixshade_soft_mul64"`), where a debug build checks
+//! every call's operand ranges.
 
 /// `a · b`, exactly (`|a · b| ≤ 2⁶²`).
 #[inline(always)]
@@ -29,8 +32,9 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
 }
 
 /// `a · b` for `a` and `b` within `i32`'s range, as `i64`s (the plain
-/// product on 64-bit targets, where narrowing them first would cost
-/// instructions; a debug build checks the range).
+/// product on the other targets, where narrowing them first would cost
+/// instructions on x86-64; a debug build with `fixshade_soft_mul64` checks
+/// the range).
 #[inline(always)]
 pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
     if cfg!(fixshade_soft_mul64) {
@@ -42,7 +46,7 @@ pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
 }
 
 /// `a · b` for `b` within `i32`'s range and a product that fits `i64` (a
-/// debug build checks both).
+/// debug build with `fixshade_soft_mul64` checks both).
 #[inline(always)]
 pub(crate) fn mul_by_narrow(a: i64, b: i64) -> i64 {
     if cfg!(fixshade_soft_mul64) {
