@@ -1,9 +1,9 @@
 //! Sets `fixshade_soft_mul64` for targets whose cores have no 32 × 32 →
 //! 64-bit multiply instruction (ARMv6-M: Cortex-M0 and M0+, the RP2040's
 //! core; ARMv8-M Baseline: Cortex-M23). There a product of two `i64` is a
-//! call to `__aeabi_lmul` (about 40 instructions), and [`widening`]'s
-//! products of 32-bit operands are built from 16 × 16 → 32-bit ones instead
-//! (one `muls` each). Stable Rust has no `target_feature` for this, so the
+//! call to `__aeabi_lmul` (37 instructions a call in the QEMU count), and
+//! [`widening`]'s products of 32-bit operands are built from 16 × 16 →
+//! 32-bit ones instead (one `muls` each). Stable Rust has no `target_feature` for this, so the
 //! target's name decides, as `cortex-m`'s build script does for `armv6m`.
 //!
 //! [`widening`]: src/widening.rs

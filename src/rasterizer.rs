@@ -260,16 +260,8 @@ pub(crate) trait DivInt:
 {
 }
 
-impl<T> DivInt for T where
-    T: Copy
-        + PartialOrd
-        + From<i8>
-        + Add<Output = T>
-        + Div<Output = T>
-        + Rem<Output = T>
-        + Sub<Output = T>
-{
-}
+impl DivInt for i32 {}
+impl DivInt for i64 {}
 
 /// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
 /// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
@@ -712,7 +704,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 // `m` times the coordinate differences (four i128
                 // multiplies: to it loop-invariant and cheap) out of the
                 // attribute loop and computes them for every triangle,
-                // small ones included (callgrind, S3 on x86-64: 0.2 M
+                // small ones included (callgrind, S3 on x86-64: 0.34 M
                 // instructions a frame; QEMU, S1 on the Cortex-M0, where
                 // they are 24 library calls a triangle: 0.7 M).
                 let r = core::hint::black_box(r);

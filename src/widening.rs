@@ -2,9 +2,9 @@
 //!
 //! On a Cortex-M0/M0+ (and M23) there is no 32 × 32 → 64-bit multiply
 //! instruction: `a as i64 * b as i64` is a call to `__aeabi_lmul`, a full
-//! 64 × 64-bit product of about 40 instructions. These functions build the
-//! same products from 16 × 16 → 32-bit multiplies (one `muls` each), inline,
-//! on those targets (the build script sets `fixshade_soft_mul64`), and are
+//! 64 × 64-bit product of 37 instructions a call (QEMU count, S1). These
+//! functions build the same products from 16 × 16 → 32-bit multiplies (one
+//! `muls` each), inline, on those targets (the build script sets `fixshade_soft_mul64`), and are
 //! the plain product everywhere else. Both forms are compiled on every
 //! target and the unit tests hold the limb forms to the plain products;
 //! CI also runs the whole test suite on the host with the limb forms
