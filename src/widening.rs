@@ -5,11 +5,11 @@
 //! 64 × 64-bit product of 37 instructions a call (QEMU count, S1). These
 //! functions build the same products from 16 × 16 → 32-bit multiplies (one
 //! `muls` each), inline, on those targets (the build script sets
-//! `fixshade_soft_mul64`), and are the plain product everywhere else. Both forms are compiled on every
-//! target and the unit tests hold the limb forms to the plain products;
-//! CI also runs the whole test suite on the host with the limb forms
-//! (`RUSTFLAGS="--cfg fixshade_soft_mul64"`), where a debug build checks
-//! every call's operand ranges.
+//! `fixshade_soft_mul64`), and are the plain product everywhere else. Both
+//! forms are compiled on every target and the unit tests hold the limb
+//! forms to the plain products; CI also runs the whole test suite on the
+//! host with the limb forms (`RUSTFLAGS="--cfg fixshade_soft_mul64"`),
+//! where a debug build checks every call's operand ranges.
 
 /// `a · b`, exactly (`|a · b| ≤ 2⁶²`).
 #[inline(always)]
