@@ -9,9 +9,14 @@
 //! [`widening`]: src/widening.rs
 fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
+    println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div64)");
     println!("cargo:rerun-if-changed=build.rs");
     let target = std::env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
         println!("cargo:rustc-cfg=fixshade_soft_mul64");
+    }
+    let width = std::env::var("CARGO_CFG_TARGET_POINTER_WIDTH").unwrap_or_default();
+    if width != "64" {
+        println!("cargo:rustc-cfg=fixshade_soft_div64");
     }
 }

@@ -6,6 +6,7 @@ pub mod band;
 pub mod camera;
 pub mod color;
 pub mod depth;
+mod division;
 pub mod framebuffer;
 pub mod illumination;
 pub mod light;

@@ -67,6 +67,7 @@
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
 use crate::vector::{Unit3, UNIT_ONE};
+use crate::widening::mul_hi32;
 
 /// `round((1/√X_k − c_k)·2¹⁵)` at the nodes `X_k = ¼ + k/64`, `k = 0..=48`,
 /// where `c_k = f''(X_k)·(1/64)²/16` lowers each node by half the chord error
@@ -82,26 +83,6 @@ const RSQRT_TABLE: [u16; 49] = [
 /// Bit position the largest magnitude is brought to before the unit-vector
 /// core: `b_max ∈ [2^B_TOP, 2^(B_TOP+1)]`.
 const B_TOP: u32 = 19;
-
-/// `⌊a·b / 2³²⌋` or one less, from three 16 × 16 → 32-bit products (a
-/// 64-bit multiply is a library call on thumbv6m).
-///
-/// The low × low product is left out: it is below 2³², so it can only carry
-/// 1 into the high word. (The exact four-product form is also what LLVM
-/// recognises and turns back into a call to `__aeabi_lmul`.)
-#[inline(always)]
-fn mul_hi32(a: u32, b: u32) -> u32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    // Each factor < 2^16, so each product < 2^32.
-    let hh = ah * bh;
-    let hl = ah * bl;
-    let lh = al * bh;
-    // The carry into bit 32 from the middle terms: < 2^17.
-    let mid = (hl & 0xFFFF) + (lh & 0xFFFF);
-    // The partial sums never exceed the true high word, which is < 2^32.
-    hh + (hl >> 16) + (lh >> 16) + (mid >> 16)
-}
 
 /// Reciprocal square root of a normalised mantissa, in fixed point.
 ///

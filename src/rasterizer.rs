@@ -32,9 +32,8 @@
 //! (`i128`); spans step from there. Within a target of at most 2¹³ pixels
 //! a side the stepping error stays below 2⁻⁴ of the attribute's unit.
 
-use core::ops::{Add, Div, Rem, Sub};
-
-use crate::widening::{mul_by_narrow, mul_narrow, mul_u32};
+use crate::division::{floor_div, recip63};
+use crate::widening::{mul_by_narrow, mul_i32_u16, mul_narrow, mul_u32};
 
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
 pub const SUBPIXEL_BITS: u32 = 4;
@@ -248,57 +247,6 @@ impl Edge {
     }
 }
 
-/// The operations [`floor_div`] needs: `i32` and `i64`.
-pub(crate) trait DivInt:
-    Copy
-    + PartialOrd
-    + From<i8>
-    + Add<Output = Self>
-    + Div<Output = Self>
-    + Rem<Output = Self>
-    + Sub<Output = Self>
-{
-}
-
-impl DivInt for i32 {}
-impl DivInt for i64 {}
-
-/// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
-/// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
-/// [`floor_div_rem`] (the same value).
-#[inline]
-pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
-    if cfg!(fixshade_soft_mul64) {
-        floor_div_shifted(a, b)
-    } else {
-        floor_div_rem(a, b)
-    }
-}
-
-/// [`floor_div`] from the remainder: division truncates, and a negative
-/// remainder means the quotient was rounded up.
-#[inline]
-fn floor_div_rem<T: DivInt>(a: T, b: T) -> T {
-    let q = a / b;
-    if a % b < T::from(0) {
-        q - T::from(1)
-    } else {
-        q
-    }
-}
-
-/// [`floor_div`] without the remainder, which LLVM takes as `a − q·b` (a
-/// call to `__aeabi_lmul` on a Cortex-M0): a negative `a` is divided as
-/// `a − (b − 1)`, whose truncated quotient is the floor.
-#[inline]
-fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
-    if a < T::from(0) {
-        (a - b + T::from(1)) / b
-    } else {
-        a / b
-    }
-}
-
 /// `1 / area` as a 32-bit mantissa and a shift: `1/a ≈ m / 2^sh`.
 #[derive(Clone, Copy, Debug)]
 struct Recip {
@@ -320,7 +268,7 @@ impl Recip {
         };
         // 1/a ≈ (2^63 / a32) · 2^−(63 + e); 2^63/a32 ∈ (2^31, 2^32].
         Recip {
-            m: ((1u64 << 63) / a32) as i64,
+            m: recip63(a32 as u32) as i64,
             sh: (63 + e) as u32,
         }
     }
@@ -876,6 +824,14 @@ impl<const N: usize> Walk<N> {
                 // instructions without it, 6.10 M with).
                 if core::hint::black_box(exact) {
                     start = exact_start(lo, y);
+                } else if cfg!(fixshade_soft_mul64) && self.bounded {
+                    // A bounded triangle is under 256 pixels wide and its
+                    // gradients within ±2^24: two 16 × 16-bit products
+                    // each where a 64-bit product is a library call.
+                    let off = (lo - self.x_lo) as u32;
+                    for (s, d) in start.iter_mut().zip(&self.ddx) {
+                        *s += mul_i32_u16(*d as i32, off);
+                    }
                 } else {
                     let off = lo - self.x_lo;
                     for (s, d) in start.iter_mut().zip(&self.ddx) {
@@ -976,7 +932,7 @@ pub fn rasterize_rows<const N: usize>(
 
 #[cfg(test)]
 pub(crate) mod tests {
-    use super::{floor_div_rem, floor_div_shifted, EdgeLine, Recip};
+    use super::{EdgeLine, Recip};
 
     /// A xorshift generator: reproducible operands without a dependency.
     pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
@@ -1011,31 +967,6 @@ pub(crate) mod tests {
             }
         }
         assert!(narrow > 100_000, "{narrow}");
-    }
-
-    /// The floor division of the Cortex-M0 (no remainder) is the one that
-    /// takes the remainder, in `i64` and `i32`: numerators of both signs and
-    /// every magnitude, exact multiples and their neighbours, divisors from
-    /// 1 up.
-    #[test]
-    fn shifted_floor_division_is_the_remainder_one() {
-        let mut next = xorshift(0x5851_f42d_4c95_7f2d);
-        for _ in 0..100_000 {
-            let b = (next() >> (1 + next() % 62)).max(1) as i64;
-            let q = (next() >> (1 + next() % 63)) as i64 / b;
-            let sign = if next() & 1 == 0 { 1 } else { -1 };
-            for a in [sign * q * b - 1, sign * q * b, sign * q * b + 1] {
-                if a.checked_sub(b).is_none() {
-                    continue;
-                }
-                assert_eq!(floor_div_shifted(a, b), floor_div_rem(a, b), "{a} / {b}");
-                assert_eq!(floor_div_rem(a, b), a.div_euclid(b), "{a} / {b}");
-                let (a32, b32) = (a as i32, (b as i32).max(1));
-                if a32.checked_sub(b32).is_some() {
-                    assert_eq!(floor_div_shifted(a32, b32), floor_div_rem(a32, b32));
-                }
-            }
-        }
     }
 
     /// The two-limb quotient of 32-bit targets equals the 128-bit one, for

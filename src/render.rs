@@ -35,15 +35,14 @@ use crate::camera::{Camera, CameraError, ProjectionCoeffs};
 use crate::color::{Rgb, Shade};
 use crate::depth::DepthTest;
 pub use crate::depth::NoDepth;
+use crate::division::{floor_div, floor_div_all};
 use crate::framebuffer::Framebuffer;
 use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
-use crate::rasterizer::{
-    floor_div, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT,
-};
+use crate::rasterizer::{ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT};
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
@@ -649,8 +648,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ///
     /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
     /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `|2·x_c·8W| < 2⁶²`;
-    /// with `0 < w < 2³²`, each numerator and it minus the divisor `2w`
-    /// ([`floor_div`]'s condition) stay within `i64`.
+    /// with `0 < w < 2³²`, each numerator is within ±2⁶³ and the divisor
+    /// `2w` below 2³³ ([`floor_div_all`]'s conditions).
     #[inline]
     pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
         let w = c[3];
@@ -658,14 +657,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             return [0, 0, 0];
         }
         let (hw, hh) = (8 * self.w, 8 * self.h);
-        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w).
-        let x = floor_div(mul_by_narrow(2 * c[0], hw) + w, 2 * w) + hw;
-        let y = floor_div(mul_by_narrow(-2 * c[1], hh) + w, 2 * w) + hh;
-        let z = floor_div(2 * c[2] * (1 << 23) + w, 2 * w) + (1 << 23);
+        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w). The quotients
+        // are exact within ±2³¹, beyond which each clamp below decides
+        // alike (8W, 8H ≤ 2²³).
+        let [x, y, z] = floor_div_all(
+            [
+                mul_by_narrow(2 * c[0], hw) + w,
+                mul_by_narrow(-2 * c[1], hh) + w,
+                2 * c[2] * (1 << 23) + w,
+            ],
+            2 * w,
+        );
         [
-            x.clamp(-COORD_LIMIT, COORD_LIMIT),
-            y.clamp(-COORD_LIMIT, COORD_LIMIT),
-            z.clamp(-(1 << 30), 1 << 30),
+            (x + hw).clamp(-COORD_LIMIT, COORD_LIMIT),
+            (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT),
+            (z + (1 << 23)).clamp(-(1 << 30), 1 << 30),
         ]
     }
 

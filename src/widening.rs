@@ -82,6 +82,15 @@ pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
     hi + (al * bl) as u64 + ((mid as u64) << 16)
 }
 
+/// `a · b` for `b < 2¹⁶`, exactly: with `a = aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`,
+/// `0 ≤ aₗ < 2¹⁶`), `aₕ·b` fits `i32` and `aₗ·b` fits `u32`: two 16 × 16 →
+/// 32-bit products (`muls`) on every core.
+#[inline(always)]
+pub(crate) fn mul_i32_u16(a: i32, b: u32) -> i64 {
+    debug_assert!(b < 1 << 16);
+    ((((a >> 16) * b as i32) as i64) << 16) + ((a as u32 & 0xFFFF) * b) as i64
+}
+
 /// [`mul_by_narrow`] modulo 2⁶⁴ from 32-bit limbs: with `a = aₕ·2³² + aₗ`
 /// (`aₗ` unsigned) and `b` read as unsigned (`b + 2³²` when negative),
 /// `a·b ≡ aₗ·b_u + (aₕ·b − [b < 0]·aₗ)·2³²`, and only the low 32 bits of
@@ -96,9 +105,29 @@ pub(crate) fn mul_i64_i32_limbs(a: i64, b: i32) -> i64 {
     (((hi as u64) << 32) | (p & 0xFFFF_FFFF)) as i64
 }
 
+/// `⌊a·b / 2³²⌋` or one less, from three 16 × 16 → 32-bit products (a
+/// 64-bit multiply is a library call on thumbv6m).
+///
+/// The low × low product is left out: it is below 2³², so it can only carry
+/// 1 into the high word. (The exact four-product form is also what LLVM
+/// recognises and turns back into a call to `__aeabi_lmul`.)
+#[inline(always)]
+pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // Each factor < 2^16, so each product < 2^32.
+    let hh = ah * bh;
+    let hl = ah * bl;
+    let lh = al * bh;
+    // The carry into bit 32 from the middle terms: < 2^17.
+    let mid = (hl & 0xFFFF) + (lh & 0xFFFF);
+    // The partial sums never exceed the true high word, which is < 2^32.
+    hh + (hl >> 16) + (lh >> 16) + (mid >> 16)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{mul_i32_limbs, mul_i64_i32_limbs, mul_u32_limbs};
+    use super::{mul_hi32, mul_i32_limbs, mul_i32_u16, mul_i64_i32_limbs, mul_u32_limbs};
     use crate::rasterizer::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
@@ -140,6 +169,11 @@ mod tests {
                     mul_u32_limbs(a as u32, b as u32),
                     (a as u32) as u64 * (b as u32) as u64
                 );
+                let b16 = b as u32 & 0xFFFF;
+                assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);
+                let h = mul_hi32(a as u32, b as u32);
+                let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
+                assert!(h == exact || h + 1 == exact, "{a} {b}");
                 let a64 = a as i64;
                 assert_eq!(
                     mul_i64_i32_limbs(a64, b32),

@@ -1,0 +1,421 @@
+//! Exact integer division, cheap on every core.
+//!
+//! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk, the window
+//!   mapping).
+//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d`, the mantissa of a
+//!   reciprocal (a triangle's area, a vertex's `w`).
+//! - [`floor_div_all`]: several numerators over one divisor (the window
+//!   mapping divides a vertex's x, y and z by the same `2w`).
+//!
+//! A 64-bit division is one instruction on a 64-bit core and a library call
+//! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
+//! Cortex-M4 (which divides only 32-bit numbers in hardware), in the QEMU
+//! counts of S1, where the window mapping's three per vertex were 14 % of
+//! the M0's frame. Where the build script sets `fixshade_soft_div64`
+//! (targets whose pointers are narrower than 64 bits), [`recip63`] takes
+//! one 32-bit division and two Newton steps, and [`floor_div_all`] takes one
+//! reciprocal and, per numerator, a 32 × 32 → 64-bit product and an exact
+//! remainder fix-up. The values are the same on every target (unit tests
+//! hold each form to the plain division; CI runs the whole suite on the
+//! host with `--cfg fixshade_soft_div64`), so frames stay bit-exact.
+
+use core::ops::{Add, Div, Rem, Sub};
+
+use crate::widening::{mul_hi32, mul_u32};
+
+/// The operations [`floor_div`] needs: `i32` and `i64`.
+pub(crate) trait DivInt:
+    Copy
+    + PartialOrd
+    + From<i8>
+    + Add<Output = Self>
+    + Div<Output = Self>
+    + Rem<Output = Self>
+    + Sub<Output = Self>
+{
+}
+
+impl DivInt for i32 {}
+impl DivInt for i64 {}
+
+/// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
+/// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
+/// [`floor_div_rem`] (the same value).
+#[inline]
+pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
+    if cfg!(fixshade_soft_mul64) {
+        floor_div_shifted(a, b)
+    } else {
+        floor_div_rem(a, b)
+    }
+}
+
+/// [`floor_div`] from the remainder: division truncates, and a negative
+/// remainder means the quotient was rounded up.
+#[inline]
+fn floor_div_rem<T: DivInt>(a: T, b: T) -> T {
+    let q = a / b;
+    if a % b < T::from(0) {
+        q - T::from(1)
+    } else {
+        q
+    }
+}
+
+/// [`floor_div`] without the remainder, which LLVM takes as `a − q·b` (a
+/// call to `__aeabi_lmul` on a Cortex-M0): a negative `a` is divided as
+/// `a − (b − 1)`, whose truncated quotient is the floor.
+#[inline]
+fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
+    if a < T::from(0) {
+        (a - b + T::from(1)) / b
+    } else {
+        a / b
+    }
+}
+
+/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)`: a value in `(2³¹, 2³²]`.
+/// [`recip63_newton`] where `fixshade_soft_div64` is set, else the plain
+/// division (the same value).
+#[inline]
+pub(crate) fn recip63(d: u32) -> u64 {
+    if cfg!(fixshade_soft_div64) {
+        recip63_newton(d)
+    } else {
+        (1u64 << 63) / d as u64
+    }
+}
+
+/// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁶` (`k = 0..=32`), floored; the
+/// first (2³²) capped to `u32::MAX`. 132 bytes, computed by the compiler.
+const RECIP_NODES: [u32; 33] = {
+    let mut t = [0u32; 33];
+    let mut k = 0;
+    while k < 33 {
+        let y = (1u64 << 63) / ((1u64 << 31) + ((k as u64) << 26));
+        t[k] = if y > u32::MAX as u64 {
+            u32::MAX
+        } else {
+            y as u32
+        };
+        k += 1;
+    }
+    t
+};
+
+/// `⌊a·b / 2³²⌋` or one less: the high word of one 32 × 32 → 64-bit product
+/// where the core has it, [`mul_hi32`]'s three 16 × 16 → 32-bit products
+/// where not. For callers that correct the result exactly afterwards.
+#[inline(always)]
+fn mul_hi_approx(a: u32, b: u32) -> u32 {
+    if cfg!(fixshade_soft_mul64) {
+        mul_hi32(a, b)
+    } else {
+        (mul_u32(a, b) >> 32) as u32
+    }
+}
+
+/// `a · b` for `b < 2¹⁶`, from two 16 × 16 → 32-bit products.
+#[inline(always)]
+fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
+    debug_assert!(b < 1 << 16);
+    ((((a >> 16) * b) as u64) << 16) + ((a & 0xFFFF) * b) as u64
+}
+
+/// [`recip63`] without a division, for `d ∈ [2³¹, 2³²)`; `Y = 2⁶³/d`.
+///
+/// 1. Seed: the chord between the two [`RECIP_NODES`] around `d`. `Y` is
+///    convex in `d`, so the chord's error is at most `(2⁻⁶)²/8 · Y''`,
+///    below `Y·2⁻¹¹`.
+/// 2. A Newton step in 32 bits: with `y = Y·(1 − ε)`,
+///    `e = 2³¹ − ⌊d·y/2³²⌋ ≈ 2³¹·ε` and `y ← y + 2·⌊y·e/2³²⌋ = Y·(1 − ε²)`,
+///    off by at most 8 units for the truncated products: `|Y − y| < 2¹¹`.
+/// 3. The exact remainder `e = 2⁶³ − d·y` (`|e| < 2⁴³`), the quotient
+///    `δ ≈ e·y/2⁶³` of it by `d` (`|δ| < 2¹¹`, within 2 of `e/d`), and
+///    `e − δ·d` exactly, which at most two steps of one `d` bring into
+///    `[0, d)`.
+#[inline]
+fn recip63_newton(d: u32) -> u64 {
+    debug_assert!(d >= 1 << 31);
+    if d == 1 << 31 {
+        // Y = 2^32, which the 32-bit operands below cannot hold.
+        return 1 << 32;
+    }
+    let x = d - (1 << 31);
+    let k = (x >> 26) as usize;
+    let frac = (x >> 10) & 0xFFFF;
+    let (t0, t1) = (RECIP_NODES[k], RECIP_NODES[k + 1]);
+    // t0 − t1 < 2^32/33 < 2^27: the product is below 2^32.
+    let y = t0 - ((((t0 - t1) >> 11) * frac) >> 5);
+    // |e| ≤ 2^21 (ε ≤ 2^-11 and the products' truncation).
+    let e = (1u32 << 31).wrapping_sub(mul_hi_approx(d, y)) as i32;
+    let step = 2 * mul_hi_approx(y, e.unsigned_abs()) as i64;
+    // Y < 2^32 − 1 for d > 2^31: the cap keeps y within 2^11 of Y.
+    let y = (y as i64 + if e < 0 { -step } else { step }).clamp(0, u32::MAX as i64) as u32;
+    let e = (1u64 << 63).wrapping_sub(mul_u32(d, y)) as i64;
+    let delta = mul_hi_approx(y, (e.unsigned_abs() >> 11) as u32) >> 20;
+    let by = mul_u32_by_u16(d, delta) as i64;
+    let (mut y, mut e) = if e < 0 {
+        (y as i64 - delta as i64, e + by)
+    } else {
+        (y as i64 + delta as i64, e - by)
+    };
+    let y0 = y;
+    while e < 0 {
+        y -= 1;
+        e += d as i64;
+    }
+    while e >= d as i64 {
+        y += 1;
+        e -= d as i64;
+    }
+    debug_assert!(y.abs_diff(y0) <= 2, "{d}: {y0} → {y}");
+    y as u64
+}
+
+/// `a · b` modulo 2⁶⁴ for `a, b < 2³³`, from one 32 × 32 → 64-bit product
+/// ([`mul_u32`]) and the top bits' shifted terms.
+#[inline(always)]
+fn times_u33(a: u64, b: u64) -> u64 {
+    let mut p = mul_u32(a as u32, b as u32);
+    if a >> 32 != 0 {
+        p = p.wrapping_add(b << 32);
+    }
+    if b >> 32 != 0 {
+        p = p.wrapping_add(a << 32);
+    }
+    p
+}
+
+/// `⌊a / 2^f⌋` for `f ≤ 32` where it is below 2³², in 32-bit shifts (a
+/// 64-bit shift by a variable amount is a library call on a Cortex-M0).
+#[inline(always)]
+fn shr_to_u32(a: u64, f: u32) -> u32 {
+    let (hi, lo) = ((a >> 32) as u32, a as u32);
+    match f {
+        0 => lo,
+        32.. => hi,
+        _ => hi << (32 - f) | lo >> f,
+    }
+}
+
+/// The largest quotient magnitude [`floor_div_all`] computes exactly.
+pub(crate) const QUOTIENT_LIMIT: i64 = 1 << 31;
+
+/// `⌊nᵢ / d⌋` for each `nᵢ` (`|nᵢ| < 2⁶³`) and `1 ≤ d < 2³³`, exact where it
+/// lies within ±[`QUOTIENT_LIMIT`] and otherwise beyond that limit on the
+/// same side (callers clamp to a narrower range). On `fixshade_soft_div64`
+/// targets from one reciprocal ([`Divisor`]), else by [`floor_div`] each.
+#[inline]
+pub(crate) fn floor_div_all<const N: usize>(n: [i64; N], d: i64) -> [i64; N] {
+    if cfg!(fixshade_soft_div64) {
+        let by = Divisor::new(d as u64);
+        n.map(|n| by.floor_sat(n))
+    } else {
+        n.map(|n| floor_div(n, d))
+    }
+}
+
+/// A divisor `1 ≤ d < 2³³` prepared for [`Divisor::floor_sat`]:
+/// `d ≈ hi·2^(f − 31)` with `hi ∈ [2³¹, 2³²)` (exact when `d < 2³²`) and
+/// `m = ⌊2⁶³/hi⌋` (capped to `u32::MAX`).
+#[derive(Clone, Copy, Debug)]
+struct Divisor {
+    d: u64,
+    m: u32,
+    /// The numerator shift, `f = bits(d) − 1 ∈ [0, 32]`.
+    f: u32,
+    /// `2³¹·d`: numerators from here on have quotients beyond the limit.
+    lim: u64,
+}
+
+impl Divisor {
+    #[inline]
+    fn new(d: u64) -> Divisor {
+        debug_assert!((1..1 << 33).contains(&d));
+        let f = if d >> 32 != 0 {
+            32
+        } else {
+            31 - (d as u32).leading_zeros()
+        };
+        // hi = d·2^(31 − f), truncated when f = 32: in [2^31, 2^32).
+        let hi = if f == 32 {
+            (d >> 1) as u32
+        } else {
+            (d as u32) << (31 - f)
+        };
+        Divisor {
+            d,
+            m: recip63(hi).min(u32::MAX as u64) as u32,
+            f,
+            lim: d << 31,
+        }
+    }
+
+    /// `⌊n/d⌋` clamped to ±[`QUOTIENT_LIMIT`], for `|n| < 2⁶³`.
+    ///
+    /// For `a = |n| < 2³¹·d`, `u = ⌊a/d⌋ < 2³¹`. With `t = ⌊a/2^f⌋ < 2³²`
+    /// (`2^f ≤ d`, so dropping `a`'s low bits moves the quotient by less
+    /// than one), `u₀ = ⌊t·m/2³²⌋` (or one less) approximates
+    /// `a/(hi·2^(f−31))`, whose factors are each within a relative 2⁻³¹ of
+    /// the exact ones: `u − 3 ≤ u₀ ≤ u + 1`. The remainder `r = a − u₀·d`,
+    /// in `[−d, 4d)`, then fixes `u₀` to `u` (in 32 bits when `d < 2²⁹`,
+    /// where `r` fits `i32` and is exact modulo 2³²; else modulo 2⁶⁴), and
+    /// a negative `n` takes `−⌈a/d⌉`.
+    #[inline]
+    fn floor_sat(self, n: i64) -> i64 {
+        let a = n.unsigned_abs();
+        if a >= self.lim {
+            return if n < 0 {
+                -QUOTIENT_LIMIT
+            } else {
+                QUOTIENT_LIMIT
+            };
+        }
+        let u0 = mul_hi_approx(shr_to_u32(a, self.f), self.m);
+        let (u, rest) = if self.d < 1 << 29 {
+            let d = self.d as i32;
+            let mut u = u0;
+            let mut r = (a as u32).wrapping_sub(u.wrapping_mul(d as u32)) as i32;
+            while r < 0 {
+                u -= 1;
+                r += d;
+            }
+            while r >= d {
+                u += 1;
+                r -= d;
+            }
+            (u, r != 0)
+        } else {
+            let d = self.d as i64;
+            let mut u = u0;
+            let mut r = a.wrapping_sub(times_u33(u as u64, self.d)) as i64;
+            while r < 0 {
+                u -= 1;
+                r += d;
+            }
+            while r >= d {
+                u += 1;
+                r -= d;
+            }
+            (u, r != 0)
+        };
+        debug_assert!(u0 <= u + 1 && u <= u0 + 3, "{n} / {}: {u0} → {u}", self.d);
+        let u = u as i64;
+        match (n < 0, rest) {
+            (false, _) => u,
+            (true, false) => -u,
+            (true, true) => -u - 1,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{floor_div_rem, floor_div_shifted, recip63_newton, Divisor, QUOTIENT_LIMIT};
+    use crate::rasterizer::tests::xorshift;
+
+    /// The floor division of the Cortex-M0 (no remainder) is the one that
+    /// takes the remainder, in `i64` and `i32`: numerators of both signs and
+    /// every magnitude, exact multiples and their neighbours, divisors from
+    /// 1 up.
+    #[test]
+    fn shifted_floor_division_is_the_remainder_one() {
+        let mut next = xorshift(0x5851_f42d_4c95_7f2d);
+        for _ in 0..100_000 {
+            let b = (next() >> (1 + next() % 62)).max(1) as i64;
+            let q = (next() >> (1 + next() % 63)) as i64 / b;
+            let sign = if next() & 1 == 0 { 1 } else { -1 };
+            for a in [sign * q * b - 1, sign * q * b, sign * q * b + 1] {
+                if a.checked_sub(b).is_none() {
+                    continue;
+                }
+                assert_eq!(floor_div_shifted(a, b), floor_div_rem(a, b), "{a} / {b}");
+                assert_eq!(floor_div_rem(a, b), a.div_euclid(b), "{a} / {b}");
+                let (a32, b32) = (a as i32, (b as i32).max(1));
+                if a32.checked_sub(b32).is_some() {
+                    assert_eq!(floor_div_shifted(a32, b32), floor_div_rem(a32, b32));
+                }
+            }
+        }
+    }
+
+    /// The Newton reciprocal is the division's, at the ends of its domain,
+    /// at every power of two and its neighbours, and at random divisors.
+    #[test]
+    fn newton_reciprocal_is_the_division() {
+        let mut ds: Vec<u32> = vec![1 << 31, (1 << 31) + 1, u32::MAX, u32::MAX - 1];
+        for k in 0..31 {
+            for d in [(1u32 << 31) + (1 << k), (1u32 << 31) + (1 << k) - 1] {
+                ds.push(d);
+            }
+        }
+        for h in [1u32 << 15, (1 << 16) - 1] {
+            ds.extend([h << 16, (h << 16) | 0xFFFF]);
+        }
+        let mut next = xorshift(0x1234_5678_9abc_def1);
+        ds.extend((0..200_000).map(|_| (next() as u32) | 1 << 31));
+        for d in ds {
+            assert_eq!(recip63_newton(d), (1u64 << 63) / d as u64, "{d}");
+        }
+    }
+
+    /// Every divisor of the domain (2³¹ of them): run with
+    /// `cargo test --release --lib -- --ignored recip63_exhaustive`.
+    #[test]
+    #[ignore = "2^31 divisors: about a minute in release"]
+    fn recip63_exhaustive() {
+        for d in (1u32 << 31)..=u32::MAX {
+            assert_eq!(recip63_newton(d), (1u64 << 63) / d as u64, "{d}");
+        }
+    }
+
+    /// [`Divisor::floor_sat`] is the clamped floor: divisors from 1 to
+    /// 2³³ − 1 (every bit length, powers of two and their neighbours),
+    /// numerators of both signs around exact multiples, at the quotient
+    /// limit and at the ends of `i64`.
+    #[test]
+    fn reciprocal_floor_is_the_clamped_floor() {
+        let mut next = xorshift(0x0dd0_c0ff_ee15_900d);
+        let mut ds: Vec<u64> = vec![1, 2, 3, (1 << 33) - 1, 1 << 32, (1 << 32) - 1];
+        for k in 1..33 {
+            ds.extend([1u64 << k, (1 << k) + 1, (1 << k) - 1]);
+        }
+        ds.extend((0..3000).map(|_| (next() >> (31 + next() % 33)).max(1)));
+        let check = |n: i64, d: u64| {
+            let want = n
+                .div_euclid(d as i64)
+                .clamp(-QUOTIENT_LIMIT, QUOTIENT_LIMIT);
+            assert_eq!(Divisor::new(d).floor_sat(n), want, "{n} / {d}");
+        };
+        for &d in &ds {
+            let di = d as i64;
+            for _ in 0..40 {
+                // Quotients of every magnitude up to past the limit.
+                let q = (next() >> (31 + next() % 33)) as i64;
+                let sign = if next() & 1 == 0 { 1 } else { -1 };
+                let base = (sign * q).saturating_mul(di);
+                for k in [-1, 0, 1, di - 1] {
+                    if let Some(n) = base.checked_add(k).filter(|n| *n > i64::MIN) {
+                        check(n, d);
+                    }
+                }
+            }
+            for q in [QUOTIENT_LIMIT - 1, QUOTIENT_LIMIT, QUOTIENT_LIMIT + 1] {
+                for s in [-1, 1] {
+                    let Some(base) = (s * q).checked_mul(di) else {
+                        continue;
+                    };
+                    for k in [-1, 0, 1] {
+                        if let Some(n) = base.checked_add(k).filter(|n| *n > i64::MIN) {
+                            check(n, d);
+                        }
+                    }
+                }
+            }
+            for n in [0, 1, -1, i64::MAX, -i64::MAX] {
+                check(n, d);
+            }
+        }
+    }
+}
