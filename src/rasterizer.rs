@@ -33,7 +33,7 @@
 //! a side the stepping error stays below 2⁻⁴ of the attribute's unit.
 
 use crate::division::{floor_div, recip63};
-use crate::widening::{mul_by_narrow, mul_i32_u16, mul_narrow, mul_u32};
+use crate::widening::{mul_by_narrow, mul_by_small, mul_i32_u16, mul_narrow, mul_u32};
 
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
 pub const SUBPIXEL_BITS: u32 = 4;
@@ -640,7 +640,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
                 // |d| < 2^34, coordinate differences < 2^12: below 2^47;
                 // divided by an area of at least 1 and scaled by 16, the
                 // gradients stay below 2^51.
-                let m = mul_by_narrow;
+                let m = mul_by_small;
                 let nx = m(d1, v[2].y - v[0].y) + m(d2, v[0].y - v[1].y);
                 let ny = m(d1, v[0].x - v[2].x) + m(d2, v[1].x - v[0].x);
                 (

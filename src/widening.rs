@@ -82,6 +82,28 @@ pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
     hi + (al * bl) as u64 + ((mid as u64) << 16)
 }
 
+/// `a · b` for `|a| < 2³⁴` and `|b| ≤ 2¹²` (an attribute difference times
+/// a small triangle's coordinate difference): with `a = aₕ·2¹⁶ + aₗ`,
+/// `|aₕ·b| < 2³⁰` and `|aₗ·b| < 2²⁸` fit `i32`, so two 32-bit multiplies
+/// make it where a 64-bit product is a library call (the plain product
+/// elsewhere; a debug build with `fixshade_soft_mul64` checks the ranges).
+#[inline(always)]
+pub(crate) fn mul_by_small(a: i64, b: i64) -> i64 {
+    if cfg!(fixshade_soft_mul64) {
+        debug_assert!(a.unsigned_abs() < 1 << 34 && b.unsigned_abs() <= 1 << 12);
+        mul_by_small_limbs(a, b as i32)
+    } else {
+        a * b
+    }
+}
+
+/// [`mul_by_small`] from 16-bit halves of `a` (`aₗ` unsigned).
+#[inline(always)]
+pub(crate) fn mul_by_small_limbs(a: i64, b: i32) -> i64 {
+    let (ah, al) = ((a >> 16) as i32, (a & 0xFFFF) as i32);
+    (((ah * b) as i64) << 16) + (al * b) as i64
+}
+
 /// `a · b` for `b < 2¹⁶`, exactly: with `a = aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`,
 /// `0 ≤ aₗ < 2¹⁶`), `aₕ·b` fits `i32` and `aₗ·b` fits `u32`: two 16 × 16 →
 /// 32-bit products (`muls`) on every core.
@@ -127,7 +149,9 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{mul_hi32, mul_i32_limbs, mul_i32_u16, mul_i64_i32_limbs, mul_u32_limbs};
+    use super::{
+        mul_by_small_limbs, mul_hi32, mul_i32_limbs, mul_i32_u16, mul_i64_i32_limbs, mul_u32_limbs,
+    };
     use crate::rasterizer::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
@@ -169,11 +193,14 @@ mod tests {
                     mul_u32_limbs(a as u32, b as u32),
                     (a as u32) as u64 * (b as u32) as u64
                 );
+                // mul_by_small's domain: |a| < 2^34, |b| ≤ 2^12.
+                let (a34, b12) = ((a as i64) >> 30, ((b as i64) >> 51) as i32);
+                assert_eq!(
+                    mul_by_small_limbs(a34, b12),
+                    a34 * b12 as i64,
+                    "{a34} {b12}"
+                );
                 let b16 = b as u32 & 0xFFFF;
-                assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);
-                let h = mul_hi32(a as u32, b as u32);
-                let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
-                assert!(h == exact || h + 1 == exact, "{a} {b}");
                 let a64 = a as i64;
                 assert_eq!(
                     mul_i64_i32_limbs(a64, b32),
