@@ -201,6 +201,10 @@ mod tests {
                     "{a34} {b12}"
                 );
                 let b16 = b as u32 & 0xFFFF;
+                assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);
+                let h = mul_hi32(a as u32, b as u32);
+                let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
+                assert!(h == exact || h + 1 == exact, "{a} {b}");
                 let a64 = a as i64;
                 assert_eq!(
                     mul_i64_i32_limbs(a64, b32),
