@@ -2,8 +2,9 @@
 //!
 //! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk, the window
 //!   mapping).
-//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d`, the mantissa of a
-//!   reciprocal (a triangle's area, a vertex's `w`).
+//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d` without a
+//!   division, the mantissa of a reciprocal (a triangle's area, a vertex's
+//!   `w`).
 //! - [`floor_div_all`]: several numerators over one divisor (the window
 //!   mapping divides a vertex's x, y and z by the same `2w`).
 //!
@@ -12,12 +13,14 @@
 //! Cortex-M4 (which divides only 32-bit numbers in hardware), in the QEMU
 //! counts of S1, where the window mapping's three per vertex were 14 % of
 //! the M0's frame. Where the build script sets `fixshade_soft_div64`
-//! (targets whose pointers are narrower than 64 bits), [`recip63`] takes
-//! one 32-bit division and two Newton steps, and [`floor_div_all`] takes one
-//! reciprocal and, per numerator, a 32 × 32 → 64-bit product and an exact
-//! remainder fix-up. The values are the same on every target (unit tests
-//! hold each form to the plain division; CI runs the whole suite on the
-//! host with `--cfg fixshade_soft_div64`), so frames stay bit-exact.
+//! (targets whose pointers are narrower than 64 bits), [`floor_div_all`]
+//! takes one reciprocal ([`recip63`]: a table, a Newton step and an exact
+//! remainder step, no division) and, per numerator, a 32 × 32 → 64-bit
+//! product and an exact remainder fix-up; the set-up's area reciprocal
+//! takes [`recip63`] too. The values are the same on every target (unit
+//! tests hold each form to the plain division, [`recip63`] over its whole
+//! domain; CI runs the whole suite on the host with
+//! `--cfg fixshade_soft_div64`), so frames stay bit-exact.
 
 use core::ops::{Add, Div, Rem, Sub};
 
@@ -74,18 +77,6 @@ fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
     }
 }
 
-/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)`: a value in `(2³¹, 2³²]`.
-/// [`recip63_newton`] where `fixshade_soft_div64` is set, else the plain
-/// division (the same value).
-#[inline]
-pub(crate) fn recip63(d: u32) -> u64 {
-    if cfg!(fixshade_soft_div64) {
-        recip63_newton(d)
-    } else {
-        (1u64 << 63) / d as u64
-    }
-}
-
 /// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁶` (`k = 0..=32`), floored; the
 /// first (2³²) capped to `u32::MAX`. 132 bytes, computed by the compiler.
 const RECIP_NODES: [u32; 33] = {
@@ -122,7 +113,8 @@ fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
     ((((a >> 16) * b) as u64) << 16) + ((a & 0xFFFF) * b) as u64
 }
 
-/// [`recip63`] without a division, for `d ∈ [2³¹, 2³²)`; `Y = 2⁶³/d`.
+/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)` (a value in `(2³¹, 2³²]`) without a
+/// division, for the targets without a 64-bit divide; `Y = 2⁶³/d`.
 ///
 /// 1. Seed: the chord between the two [`RECIP_NODES`] around `d`. `Y` is
 ///    convex in `d`, so the chord's error is at most `(2⁻⁶)²/8 · Y''`,
@@ -135,7 +127,7 @@ fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
 ///    `e − δ·d` exactly, which at most two steps of one `d` bring into
 ///    `[0, d)`.
 #[inline]
-fn recip63_newton(d: u32) -> u64 {
+pub(crate) fn recip63(d: u32) -> u64 {
     debug_assert!(d >= 1 << 31);
     if d == 1 << 31 {
         // Y = 2^32, which the 32-bit operands below cannot hold.
@@ -312,7 +304,7 @@ impl Divisor {
 
 #[cfg(test)]
 mod tests {
-    use super::{floor_div_rem, floor_div_shifted, recip63_newton, Divisor, QUOTIENT_LIMIT};
+    use super::{floor_div_rem, floor_div_shifted, recip63, Divisor, QUOTIENT_LIMIT};
     use crate::rasterizer::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
@@ -356,7 +348,7 @@ mod tests {
         let mut next = xorshift(0x1234_5678_9abc_def1);
         ds.extend((0..200_000).map(|_| (next() as u32) | 1 << 31));
         for d in ds {
-            assert_eq!(recip63_newton(d), (1u64 << 63) / d as u64, "{d}");
+            assert_eq!(recip63(d), (1u64 << 63) / d as u64, "{d}");
         }
     }
 
@@ -366,7 +358,7 @@ mod tests {
     #[ignore = "2^31 divisors: about a minute in release"]
     fn recip63_exhaustive() {
         for d in (1u32 << 31)..=u32::MAX {
-            assert_eq!(recip63_newton(d), (1u64 << 63) / d as u64, "{d}");
+            assert_eq!(recip63(d), (1u64 << 63) / d as u64, "{d}");
         }
     }
 
