@@ -3,10 +3,16 @@
 //! core; ARMv8-M Baseline: Cortex-M23). There a product of two `i64` is a
 //! call to `__aeabi_lmul` (37 instructions a call in the QEMU count), and
 //! [`widening`]'s products of 32-bit operands are built from 16 × 16 →
-//! 32-bit ones instead (one `muls` each). Stable Rust has no `target_feature` for this, so the
-//! target's name decides, as `cortex-m`'s build script does for `armv6m`.
+//! 32-bit ones instead (one `muls` each). Stable Rust has no
+//! `target_feature` for this, so the target's name decides, as
+//! `cortex-m`'s build script does for `armv6m`.
+//!
+//! Sets `fixshade_soft_div64` for targets whose pointers are narrower than
+//! 64 bits, where a 64-bit division is a library call: there
+//! [`division`]'s shared-divisor floors and reciprocals go without one.
 //!
 //! [`widening`]: src/widening.rs
+//! [`division`]: src/division.rs
 fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div64)");

@@ -19,8 +19,8 @@
 //! product and an exact remainder fix-up; the set-up's area reciprocal
 //! takes [`recip63`] too. The values are the same on every target (unit
 //! tests hold each form to the plain division, [`recip63`] over its whole
-//! domain; CI runs the whole suite on the host with
-//! `--cfg fixshade_soft_div64`), so frames stay bit-exact.
+//! domain, which CI runs in release; CI runs the whole suite on the host
+//! with `--cfg fixshade_soft_div64`), so frames stay bit-exact.
 
 use core::ops::{Add, Div, Rem, Sub};
 
@@ -194,9 +194,10 @@ fn shr_to_u32(a: u64, f: u32) -> u32 {
 /// The largest quotient magnitude [`floor_div_all`] computes exactly.
 pub(crate) const QUOTIENT_LIMIT: i64 = 1 << 31;
 
-/// `⌊nᵢ / d⌋` for each `nᵢ` (`|nᵢ| < 2⁶³`) and `1 ≤ d < 2³³`, exact where it
-/// lies within ±[`QUOTIENT_LIMIT`] and otherwise beyond that limit on the
-/// same side (callers clamp to a narrower range). On `fixshade_soft_div64`
+/// `⌊nᵢ / d⌋` for each `nᵢ` and `1 ≤ d < 2³³` with `nᵢ − d` within `i64`
+/// ([`floor_div`]'s condition), exact where it lies within
+/// ±[`QUOTIENT_LIMIT`] and otherwise at or beyond that limit on the same
+/// side (callers clamp to a narrower range). On `fixshade_soft_div64`
 /// targets from one reciprocal ([`Divisor`]), else by [`floor_div`] each.
 #[inline]
 pub(crate) fn floor_div_all<const N: usize>(n: [i64; N], d: i64) -> [i64; N] {

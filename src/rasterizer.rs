@@ -40,6 +40,12 @@ pub const SUBPIXEL_BITS: u32 = 4;
 /// The largest snapped coordinate magnitude, in 1/16 pixel.
 pub const COORD_LIMIT: i64 = 1 << 28;
 
+/// Attribute magnitudes must stay below this, so that the differences
+/// between a triangle's vertices stay below 2³⁴, which the set-up's exact
+/// products and plane equations assume (the renderer's depths, colours,
+/// normals and positions are all below it).
+pub const ATTR_LIMIT: i64 = 1 << 33;
+
 /// A triangle vertex in window space: position in 1/16 pixel and `N`
 /// attributes in the caller's units.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +54,7 @@ pub struct RasterVertex<const N: usize> {
     pub x: i64,
     /// y in 1/16 pixel (down), within ±[`COORD_LIMIT`].
     pub y: i64,
-    /// Attributes.
+    /// Attributes, each within ±[`ATTR_LIMIT`].
     pub attr: [i64; N],
 }
 

@@ -648,8 +648,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ///
     /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
     /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `|2·x_c·8W| < 2⁶²`;
-    /// with `0 < w < 2³²`, each numerator is within ±2⁶³ and the divisor
-    /// `2w` below 2³³ ([`floor_div_all`]'s conditions).
+    /// with `0 < w < 2³²`, each numerator is within ±(2⁶² + 2³²), so it
+    /// minus the divisor `2w` (below 2³³) stays within `i64`
+    /// ([`floor_div_all`]'s conditions).
     #[inline]
     pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
         let w = c[3];

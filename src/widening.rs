@@ -82,9 +82,10 @@ pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
     hi + (al * bl) as u64 + ((mid as u64) << 16)
 }
 
-/// `a · b` for `|a| < 2³⁴` and `|b| ≤ 2¹²` (an attribute difference times
-/// a small triangle's coordinate difference): with `a = aₕ·2¹⁶ + aₗ`,
-/// `|aₕ·b| < 2³⁰` and `|aₗ·b| < 2²⁸` fit `i32`, so two 32-bit multiplies
+/// `a · b` for `|a| < 2³⁴` and `|b| ≤ 2¹²` (an attribute difference, within
+/// [`ATTR_LIMIT`](crate::rasterizer::ATTR_LIMIT)'s bound, times a small
+/// triangle's coordinate difference): with `a = aₕ·2¹⁶ + aₗ`,
+/// `|aₕ·b| ≤ 2³⁰` and `|aₗ·b| < 2²⁸` fit `i32`, so two 32-bit multiplies
 /// make it where a 64-bit product is a library call (the plain product
 /// elsewhere; a debug build with `fixshade_soft_mul64` checks the ranges).
 #[inline(always)]
@@ -193,13 +194,15 @@ mod tests {
                     mul_u32_limbs(a as u32, b as u32),
                     (a as u32) as u64 * (b as u32) as u64
                 );
-                // mul_by_small's domain: |a| < 2^34, |b| ≤ 2^12.
-                let (a34, b12) = ((a as i64) >> 30, ((b as i64) >> 51) as i32);
-                assert_eq!(
-                    mul_by_small_limbs(a34, b12),
-                    a34 * b12 as i64,
-                    "{a34} {b12}"
-                );
+                // mul_by_small's domain: |a| < 2^34, |b| ≤ 2^12, random
+                // magnitudes and both ends.
+                let a34 = (a as i64) >> (29 + (b % 32));
+                let b12 = ((b as i64) >> (51 + (a % 13))) as i32;
+                for (x, y) in [(a34, b12), ((1 << 34) - 1, 1 << 12)] {
+                    for (x, y) in [(x, y), (x, -y), (-x, y), (-x, -y)] {
+                        assert_eq!(mul_by_small_limbs(x, y), x * y as i64, "{x} {y}");
+                    }
+                }
                 let b16 = b as u32 & 0xFFFF;
                 assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);
                 let h = mul_hi32(a as u32, b as u32);
