@@ -356,7 +356,7 @@ mod tests {
     /// Every divisor of the domain (2³¹ of them): run with
     /// `cargo test --release --lib -- --ignored recip63_exhaustive`.
     #[test]
-    #[ignore = "2^31 divisors: about a minute in release"]
+    #[ignore = "2^31 divisors: 12 s in release, 44 s in debug (CI runs it)"]
     fn recip63_exhaustive() {
         for d in (1u32 << 31)..=u32::MAX {
             assert_eq!(recip63(d), (1u64 << 63) / d as u64, "{d}");
