@@ -40,22 +40,71 @@ pub const SUBPIXEL_BITS: u32 = 4;
 /// The largest snapped coordinate magnitude, in 1/16 pixel.
 pub const COORD_LIMIT: i64 = 1 << 28;
 
-/// Attribute magnitudes must stay below this, so that the differences
-/// between a triangle's vertices stay below 2³⁴, which the set-up's exact
+/// Attributes lie in `−ATTR_LIMIT ≤ a < ATTR_LIMIT` (34-bit signed
+/// integers), so that the differences between a triangle's vertices stay
+/// below 2³⁴ in magnitude, which the set-up's exact
 /// products and plane equations assume (the renderer's depths, colours,
 /// normals and positions are all below it).
 pub const ATTR_LIMIT: i64 = 1 << 33;
 
 /// A triangle vertex in window space: position in 1/16 pixel and `N`
 /// attributes in the caller's units.
+///
+/// The rasterizer's entry points ([`Triangle::setup_rows`], [`rasterize`]
+/// and the like) draw nothing for a triangle with a vertex outside these
+/// limits ([`RasterVertex::within_limits`]);
+/// [`RasterVertex::clamped`] moves a vertex inside them, as the renderer
+/// does with a vertex far off screen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RasterVertex<const N: usize> {
     /// x in 1/16 pixel, within ±[`COORD_LIMIT`].
     pub x: i64,
     /// y in 1/16 pixel (down), within ±[`COORD_LIMIT`].
     pub y: i64,
-    /// Attributes, each within ±[`ATTR_LIMIT`].
+    /// Attributes, each in `−`[`ATTR_LIMIT`]` ≤ a < `[`ATTR_LIMIT`].
     pub attr: [i64; N],
+}
+
+impl<const N: usize> RasterVertex<N> {
+    /// Whether the vertex is one the rasterizer takes: `|x|, |y| ≤`
+    /// [`COORD_LIMIT`] and every `−`[`ATTR_LIMIT`]` ≤ attr < `[`ATTR_LIMIT`].
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{RasterVertex, ATTR_LIMIT, COORD_LIMIT};
+    /// assert!(RasterVertex { x: COORD_LIMIT, y: -COORD_LIMIT, attr: [ATTR_LIMIT - 1] }.within_limits());
+    /// assert!(!RasterVertex { x: COORD_LIMIT + 1, y: 0, attr: [0] }.within_limits());
+    /// assert!(RasterVertex { x: 0, y: 0, attr: [-ATTR_LIMIT] }.within_limits());
+    /// assert!(!RasterVertex { x: 0, y: 0, attr: [ATTR_LIMIT] }.within_limits());
+    /// ```
+    #[inline]
+    pub fn within_limits(&self) -> bool {
+        let coord = |c: i64| c.unsigned_abs() <= COORD_LIMIT as u64;
+        coord(self.x)
+            && coord(self.y)
+            && self
+                .attr
+                .iter()
+                .all(|a| (-ATTR_LIMIT..ATTR_LIMIT).contains(a))
+    }
+
+    /// The vertex with each coordinate clamped to ±[`COORD_LIMIT`] and each
+    /// attribute to `−`[`ATTR_LIMIT`]` ..= `[`ATTR_LIMIT`]` − 1`: within the
+    /// limits.
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{RasterVertex, ATTR_LIMIT, COORD_LIMIT};
+    /// let v = RasterVertex { x: i64::MIN, y: 5, attr: [i64::MAX] }.clamped();
+    /// assert_eq!(v, RasterVertex { x: -COORD_LIMIT, y: 5, attr: [ATTR_LIMIT - 1] });
+    /// ```
+    #[inline]
+    pub fn clamped(self) -> Self {
+        let coord = |c: i64| c.clamp(-COORD_LIMIT, COORD_LIMIT);
+        RasterVertex {
+            x: coord(self.x),
+            y: coord(self.y),
+            attr: self.attr.map(|a| a.clamp(-ATTR_LIMIT, ATTR_LIMIT - 1)),
+        }
+    }
 }
 
 /// The inclusive pixel rectangle that may be drawn (the target's bounds).
@@ -97,9 +146,10 @@ pub enum Facing {
 }
 
 /// The signed doubled area `E_{01}(v2)` in 1/256 pixel²: negative for a
-/// front face (counter-clockwise in NDC; window y points down).
+/// front face (counter-clockwise in NDC; window y points down). The
+/// vertices must be within the limits (see [`RasterVertex`]).
 #[inline]
-pub fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
+pub(crate) fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
     // Coordinates within ±2^28: differences within ±2^29.
     mul_narrow(v[1].x - v[0].x, v[2].y - v[0].y) - mul_narrow(v[1].y - v[0].y, v[2].x - v[0].x)
 }
@@ -469,7 +519,8 @@ pub const BOUNDED_GRADIENT: i64 = 1 << 24;
 
 impl<'v, const N: usize> Triangle<'v, N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
-    /// area, is a back face and `cull` is set, or cannot touch `clip`.
+    /// area, is a back face and `cull` is set, cannot touch `clip`, or has
+    /// a vertex outside the limits (see [`RasterVertex::within_limits`]).
     /// A back face that is kept is reoriented (its `facing` says so).
     ///
     /// ```
@@ -512,6 +563,24 @@ impl<'v, const N: usize> Triangle<'v, N> {
         rows: (i32, i32),
         cull: bool,
     ) -> Option<Self> {
+        if !v.iter().all(RasterVertex::within_limits) {
+            return None;
+        }
+        Self::setup_rows_within(v, viewport, rows, cull)
+    }
+
+    /// [`Triangle::setup_rows`] for vertices the caller knows to be within
+    /// the limits (the renderer's, which it clamps when it snaps them): no
+    /// check. Outside them a debug build may panic on overflow and a
+    /// release build may draw the wrong pixels of `viewport`.
+    #[inline(always)]
+    pub(crate) fn setup_rows_within(
+        v: &'v [RasterVertex<N>; 3],
+        viewport: ClipRect,
+        rows: (i32, i32),
+        cull: bool,
+    ) -> Option<Self> {
+        debug_assert!(v.iter().all(RasterVertex::within_limits));
         let clip = viewport;
         let caller = v;
         let a = area2(v);
@@ -898,7 +967,8 @@ fn exact_start<const N: usize>(
 
 /// Sets up triangle `v` and calls `f` with each of its spans inside `clip`,
 /// top to bottom; returns how it faced, or `None` if it drew nothing
-/// (no area, culled, or no pixel centre inside). Set-up and span walk are
+/// (no area, culled, no pixel centre inside, or a vertex outside the
+/// limits: see [`RasterVertex::within_limits`]). Set-up and span walk are
 /// one inlined step: the set-up triangle never leaves the stack frame.
 ///
 /// ```

@@ -921,7 +921,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
-            if let Some(t) = Triangle::setup_rows(tri, self.viewport, self.rows, false) {
+            if let Some(t) = Triangle::setup_rows_within(tri, self.viewport, self.rows, false) {
                 stats.drawn += 1;
                 let rest = t.walk_rows(|s| {
                     if res.is_ok() {

@@ -4,7 +4,9 @@
 //! pixels whose centre passes all three edge functions with the top-left
 //! rule (SPEC.md 5), evaluated directly at every pixel.
 
-use fixshade::rasterizer::{rasterize_rows, ClipRect, RasterVertex, Triangle, DRIFT};
+use fixshade::rasterizer::{
+    rasterize_rows, ClipRect, RasterVertex, Triangle, ATTR_LIMIT, COORD_LIMIT, DRIFT,
+};
 use proptest::prelude::*;
 
 /// `E_ab(p)`, y down.
@@ -200,4 +202,101 @@ fn small_gentle_triangles_are_bounded() {
     assert!(!small.is_empty() && small.iter().all(|&b| b));
     let wide = marks(300);
     assert!(!wide.is_empty() && wide.iter().all(|&b| !b));
+}
+
+/// A coordinate at or near the limits, or near the 24 × 24 viewport.
+fn limit_coord() -> impl Strategy<Value = i64> {
+    prop_oneof![
+        Just(COORD_LIMIT),
+        Just(-COORD_LIMIT),
+        (COORD_LIMIT - 4096..=COORD_LIMIT),
+        (-COORD_LIMIT..=-COORD_LIMIT + 4096),
+        (-64i64..24 * 16 + 64),
+    ]
+}
+
+/// An attribute at or near its limits.
+fn limit_attr() -> impl Strategy<Value = i64> {
+    prop_oneof![
+        Just(ATTR_LIMIT - 1),
+        Just(-ATTR_LIMIT),
+        (ATTR_LIMIT - 1024..ATTR_LIMIT),
+        (-ATTR_LIMIT..-ATTR_LIMIT + 1024),
+        (-1024i64..1024),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4096, ..ProptestConfig::default() })]
+
+    /// Vertices at the edges of the limits (coordinates ±2^28 sub-pixels,
+    /// attributes −2^33 and 2^33 − 1, mixed with ones near the viewport):
+    /// the coverage is the oracle's, whole and in bands, and every covered
+    /// pixel's attributes (span start plus steps) lie within one unit of
+    /// the vertex values' range. In a debug build (the default for
+    /// `cargo test`) any overflow on the way panics and fails the case.
+    #[test]
+    fn vertices_at_the_limits(
+        v in [(limit_coord(), limit_coord()), (limit_coord(), limit_coord()), (limit_coord(), limit_coord())],
+        attr in [[limit_attr(), limit_attr()], [limit_attr(), limit_attr()], [limit_attr(), limit_attr()]],
+        y0 in 0i64..24,
+        h in 1i64..4,
+    ) {
+        whole_and_band(v, y0, h)?;
+        let rv: [RasterVertex<2>; 3] = core::array::from_fn(|k| RasterVertex { x: v[k].0, y: v[k].1, attr: attr[k] });
+        prop_assert!(rv.iter().all(RasterVertex::within_limits));
+        let mut bad = None;
+        rasterize_rows(&rv, ClipRect::of_size(24, 24).unwrap(), (0, 23), false, |s| {
+            for i in 0..2 {
+                let lo = attr.iter().map(|a| a[i]).min().unwrap() - DRIFT;
+                let hi = attr.iter().map(|a| a[i]).max().unwrap() + DRIFT;
+                for k in 0..=(s.x1 - s.x0) as i64 {
+                    let a = s.start[i] + k * s.step[i];
+                    if !(lo..=hi).contains(&a) && bad.is_none() {
+                        bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
+                    }
+                }
+            }
+        });
+        prop_assert_eq!(bad, None);
+    }
+
+    /// A vertex outside the limits, by any amount up to `i64`'s ends: the
+    /// entry points draw nothing and say so (`None`), without panicking;
+    /// the same triangle `clamped` draws what the triangle with that vertex
+    /// at the limit draws.
+    #[test]
+    fn vertices_beyond_the_limits_draw_nothing(
+        v in [vertex(64), vertex(64), vertex(64)],
+        k in 0usize..3,
+        which in 0u8..3,
+        beyond in prop_oneof![Just(i64::MAX), Just(i64::MIN), 1i64..1 << 40, -(1i64 << 40)..0],
+    ) {
+        let mut rv: [RasterVertex<1>; 3] = v.map(|(x, y)| RasterVertex { x, y, attr: [x - y] });
+        let outside = |lim: i64| if beyond > 0 { lim.saturating_add(beyond) } else { (-lim - 1).saturating_add(beyond) };
+        match which {
+            0 => rv[k].x = outside(COORD_LIMIT),
+            1 => rv[k].y = outside(COORD_LIMIT),
+            _ => rv[k].attr[0] = if beyond > 0 { (ATTR_LIMIT - 1).saturating_add(beyond) } else { (-ATTR_LIMIT - 1).saturating_add(beyond) },
+        }
+        prop_assert!(!rv[k].within_limits());
+        let vp = ClipRect::of_size(24, 24).unwrap();
+        let mut drawn = 0;
+        prop_assert_eq!(rasterize_rows(&rv, vp, (0, 23), false, |_| drawn += 1), None);
+        prop_assert!(Triangle::setup(&rv, vp, false).is_none());
+        prop_assert_eq!(drawn, 0);
+        let spans = |t: &[RasterVertex<1>; 3]| {
+            let mut out = Vec::new();
+            rasterize_rows(t, vp, (0, 23), false, |s| out.push((s.y, s.x0, s.x1, s.start, s.step)));
+            out
+        };
+        let clamped = rv.map(RasterVertex::clamped);
+        let mut at_limit = rv;
+        match which {
+            0 => at_limit[k].x = if beyond > 0 { COORD_LIMIT } else { -COORD_LIMIT },
+            1 => at_limit[k].y = if beyond > 0 { COORD_LIMIT } else { -COORD_LIMIT },
+            _ => at_limit[k].attr[0] = if beyond > 0 { ATTR_LIMIT - 1 } else { -ATTR_LIMIT },
+        }
+        prop_assert_eq!(spans(&clamped), spans(&at_limit));
+    }
 }
