@@ -105,6 +105,36 @@ proptest! {
     }
 }
 
+/// The first pixel (row, column, attribute, value, allowed range) of the
+/// spans `rasterize_rows` gives (only the bounded ones if `bounded_only`)
+/// whose attribute (span start plus steps) lies more than `DRIFT` outside
+/// the range of the vertex values; `None` if there is none.
+#[allow(clippy::type_complexity)]
+fn first_beyond_drift(
+    rv: &[RasterVertex<2>; 3],
+    vp: ClipRect,
+    rows: (i32, i32),
+    bounded_only: bool,
+) -> Option<(i32, i32, usize, i64, i64, i64)> {
+    let mut bad = None;
+    rasterize_rows(rv, vp, rows, false, |s| {
+        if bounded_only && !s.bounded {
+            return;
+        }
+        for i in 0..2 {
+            let lo = rv.iter().map(|v| v.attr[i]).min().unwrap() - DRIFT;
+            let hi = rv.iter().map(|v| v.attr[i]).max().unwrap() + DRIFT;
+            for k in 0..=(s.x1 - s.x0) as i64 {
+                let a = s.start[i] + k * s.step[i];
+                if !(lo..=hi).contains(&a) && bad.is_none() {
+                    bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
+                }
+            }
+        }
+    });
+    bad
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 4096, ..ProptestConfig::default() })]
 
@@ -124,23 +154,7 @@ proptest! {
         let rv: [RasterVertex<2>; 3] = core::array::from_fn(|k| RasterVertex { x: v[k].0, y: v[k].1, attr: attr[k] });
         let vp = ClipRect::of_size(300, 300).unwrap();
         let rows = (y0, (y0 + h - 1).min(299));
-        let mut bad = None;
-        rasterize_rows(&rv, vp, rows, false, |s| {
-            if !s.bounded {
-                return;
-            }
-            for i in 0..2 {
-                let lo = attr.iter().map(|a| a[i]).min().unwrap() - DRIFT;
-                let hi = attr.iter().map(|a| a[i]).max().unwrap() + DRIFT;
-                for k in 0..=(s.x1 - s.x0) as i64 {
-                    let a = s.start[i] + k * s.step[i];
-                    if !(lo..=hi).contains(&a) && bad.is_none() {
-                        bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
-                    }
-                }
-            }
-        });
-        prop_assert_eq!(bad, None);
+        prop_assert_eq!(first_beyond_drift(&rv, vp, rows, true), None);
     }
 }
 
@@ -245,20 +259,8 @@ proptest! {
         whole_and_band(v, y0, h)?;
         let rv: [RasterVertex<2>; 3] = core::array::from_fn(|k| RasterVertex { x: v[k].0, y: v[k].1, attr: attr[k] });
         prop_assert!(rv.iter().all(RasterVertex::within_limits));
-        let mut bad = None;
-        rasterize_rows(&rv, ClipRect::of_size(24, 24).unwrap(), (0, 23), false, |s| {
-            for i in 0..2 {
-                let lo = attr.iter().map(|a| a[i]).min().unwrap() - DRIFT;
-                let hi = attr.iter().map(|a| a[i]).max().unwrap() + DRIFT;
-                for k in 0..=(s.x1 - s.x0) as i64 {
-                    let a = s.start[i] + k * s.step[i];
-                    if !(lo..=hi).contains(&a) && bad.is_none() {
-                        bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
-                    }
-                }
-            }
-        });
-        prop_assert_eq!(bad, None);
+        let vp = ClipRect::of_size(24, 24).unwrap();
+        prop_assert_eq!(first_beyond_drift(&rv, vp, (0, 23), false), None);
     }
 
     /// A vertex outside the limits, by any amount up to `i64`'s ends: the
