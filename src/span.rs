@@ -19,8 +19,12 @@
 //! three: the packed value is `Σ vᵢ·2^offᵢ` with every `vᵢ` inside its
 //! field at every pixel of the span (checked at the span's two ends; values
 //! are linear in between), so modular addition of the packed step gives
-//! exactly the packed values. The pixel is made from the accumulator's two
-//! 32-bit halves with three masks, two shifts and two ors.
+//! exactly the packed values. The pixel gathers the three integer parts:
+//! on 64-bit targets `((acc & MASK) · (1 + 2¹⁶ + 2³²)) >> 48` (an and, a
+//! multiply and a shift; the six shifted fields are disjoint, so nothing
+//! carries), elsewhere from the accumulator's two 32-bit halves with three
+//! masks, two shifts and two ors (a 64-bit multiply is a library call on a
+//! Cortex-M0).
 //!
 //! [`PairGouraud`] keeps each channel of two neighbouring pixels in the two
 //! 16-bit lanes of one `u32` (red and blue `Q5.11`, green `Q6.10`, biased by
@@ -336,13 +340,38 @@ pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
 }
 
 /// The RGB565 pixel of a packed accumulator: red's integer part is bits
-/// 59–63, green's 37–42, blue's 16–20 (see the module docs), so with
-/// `hi`/`lo` the accumulator's 32-bit halves the pixel is
+/// 59–63, green's 37–42, blue's 16–20 (see the module docs).
+///
+/// On 64-bit targets the masked accumulator times `1 + 2¹⁶ + 2³²` puts
+/// red (times 1) in bits 59–63, green (times 2¹⁶) in 53–58 and blue (times
+/// 2³²) in 48–52: the pixel is the top 16 bits. The other products land in
+/// bits 16–20, 32–36 and 37–42 or beyond bit 63, all disjoint, so no carry
+/// reaches the pixel (callgrind, S1 on x86-64: 2.783 M to 2.727 M
+/// instructions a frame; three operations a pixel instead of nine).
+///
+/// Elsewhere, with `hi`/`lo` the accumulator's 32-bit halves, the pixel is
 /// `((hi >> 16) & 0xF800) | (hi & 0x07E0) | ((lo >> 16) & 0x1F)`: 32-bit
 /// operations only (a 64-bit multiply is a library call on a Cortex-M0, and
 /// shifts-and-adds by `1 + 2¹⁶ + 2³²` get folded back into one).
 #[inline(always)]
 fn pixel_of(acc: u64) -> u16 {
+    if cfg!(target_pointer_width = "64") {
+        pixel_by_multiply(acc)
+    } else {
+        pixel_by_halves(acc)
+    }
+}
+
+/// [`pixel_of`] with one 64-bit multiply.
+#[inline(always)]
+fn pixel_by_multiply(acc: u64) -> u16 {
+    const MASK: u64 = (31 << 59) | (63 << 37) | (31 << 16);
+    ((acc & MASK).wrapping_mul(1 + (1 << 16) + (1 << 32)) >> 48) as u16
+}
+
+/// [`pixel_of`] in 32-bit operations.
+#[inline(always)]
+fn pixel_by_halves(acc: u64) -> u16 {
     let (hi, lo) = ((acc >> 32) as u32, acc as u32);
     (((hi >> 16) & 0xF800) | (hi & 0x07E0) | ((lo >> 16) & 0x1F)) as u16
 }
@@ -944,5 +973,33 @@ impl<S: Specular, V: Viewer, L: LightSet> SpanShader for PhongPixels<'_, S, V, L
             *c += d * n as i64;
         }
         self.x += n as i32;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{pixel_by_halves, pixel_by_multiply};
+    use crate::rasterizer::tests::xorshift;
+
+    /// The multiply's gather is the 32-bit one for every accumulator: each
+    /// field at every value (the others random), and random accumulators.
+    #[test]
+    fn both_pixel_forms_agree() {
+        let mut rnd = xorshift(0x5EED_0F5A_11AA);
+        for (shift, width) in [(59, 5), (37, 6), (16, 5)] {
+            for v in 0..1u64 << width {
+                for _ in 0..64 {
+                    let field = ((1u64 << width) - 1) << shift;
+                    let acc = (rnd() & !field) | v << shift;
+                    assert_eq!(pixel_by_multiply(acc), pixel_by_halves(acc), "{acc:#x}");
+                }
+            }
+        }
+        for acc in (0..1 << 20).map(|_| rnd()).chain([0, u64::MAX]) {
+            assert_eq!(pixel_by_multiply(acc), pixel_by_halves(acc), "{acc:#x}");
+        }
+        // Red, green and blue land where RGB565 has them.
+        let acc = (21u64 << 59) | (42 << 37) | (9 << 16);
+        assert_eq!(pixel_by_multiply(acc), (21 << 11) | (42 << 5) | 9);
     }
 }
