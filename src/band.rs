@@ -73,8 +73,8 @@ use heapless::Deque;
 
 use crate::rasterizer::{area2, RasterVertex, Walk};
 use crate::render::{
-    check_size, CacheCorners, CachedVertex, Carry, CarryExtra, Corners, DrawStats, Frame, NoCarry,
-    RenderError, Renderer, ShadingMode,
+    check_bounds, CacheCorners, CachedVertex, Carry, CarryExtra, Corners, DrawStats, Frame,
+    NoCarry, RenderError, Renderer, ShadingMode,
 };
 use crate::span::BandSink;
 use crate::vector::{Unit3, Vec3};
@@ -346,7 +346,7 @@ fn light_band_vertex<S: Specular, V: Viewer, L: LightSet>(
     let s =
         f.r.lighting()
             .shade(f.eye(i), if back { n.neg() } else { n });
-    stats.lit += 1;
+    stats.lit = stats.lit.saturating_add(1);
     // One colour is kept: the first facing asked for (the other one, of
     // two-sided silhouette vertices only, is lit each time).
     if bits & (B_FRONT | B_BACK) == 0 {
@@ -358,13 +358,14 @@ fn light_band_vertex<S: Specular, V: Viewer, L: LightSet>(
 /// Rows per band actually used (at most the viewport's height) and the
 /// checks of the caller's buffers.
 fn check_band<E, D: BandDepth, X: VertexMode>(
-    size: Size,
+    bb: Rectangle,
     bands: &Bands,
     depth: &D,
     vertices: &mut X,
     n_vertices: usize,
 ) -> Result<u32, RenderError<E>> {
-    check_size(size)?;
+    let size = bb.size;
+    check_bounds(&bb)?;
     if X::CACHED && vertices.cache().len() < n_vertices {
         return Err(RenderError::CacheTooSmall);
     }
@@ -459,9 +460,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         let bb = target.bounding_box();
         let size = bb.size;
         let n = mesh.positions.len();
-        let h = check_band(size, bands, depth, vertices, n)?;
+        let h = check_band(bb, bands, depth, vertices, n)?;
         let mut stats = DrawStats {
-            triangles: mesh.indices.len() as u32,
+            triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
         let Some(mut frame) = self.frame(mesh, size)? else {
@@ -572,7 +573,8 @@ impl Job<'_, '_> {
             let rows = self.h.min(height - y0);
             let (b0, b1) = (y0 as i32, (y0 + rows - 1) as i32);
             frame.rows = (b0, b1);
-            let npx = (w * rows) as usize;
+            // w, rows ≤ 2^20 (check_size): below 2^40, in u64.
+            let npx = (w as u64 * rows as u64) as usize;
             let raw_bg = RawU16::from(bands.background).into_inner();
             bands.colour[..npx].fill(raw_bg);
             if !depth.start_band(w, y0, rows) {

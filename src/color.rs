@@ -97,12 +97,18 @@ impl Rgb {
     }
 
     /// The channels scaled by `num / den` (used for the k × k samples of an
-    /// area light), rounded to nearest. `den == 0` gives black.
+    /// area light), rounded to nearest and clamped to [`RGB_MAX`] like every
+    /// channel. `den == 0` gives black.
     pub fn scaled(self, num: u32, den: u32) -> Rgb {
         if den == 0 {
             return Rgb::BLACK;
         }
-        let s = |v: u32| ((v as u64 * num as u64 + den as u64 / 2) / den as u64) as u32;
+        // v·num ≤ 2^24·(2^32 − 1) and den/2 < 2^31: below 2^57, no overflow
+        // in u64. The quotient can exceed u32 (up to 2^56): clamp before
+        // narrowing.
+        let s = |v: u32| {
+            ((v as u64 * num as u64 + den as u64 / 2) / den as u64).min(RGB_MAX as u64) as u32
+        };
         Rgb::from_bits(s(self.c[0]), s(self.c[1]), s(self.c[2]))
     }
 }

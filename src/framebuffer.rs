@@ -5,12 +5,11 @@
 use core::convert::Infallible;
 
 use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::geometry::Dimensions;
 use embedded_graphics::geometry::{OriginDimensions, Size};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::RawData;
-use embedded_graphics::primitives::{PointsIter, Rectangle};
+use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
 /// Why a framebuffer could not be made.
@@ -66,7 +65,9 @@ impl<'a> Framebuffer<'a> {
     /// Row `y` from column `x0`, `n` pixels, if all of it is inside.
     #[inline]
     pub fn row_mut(&mut self, y: u32, x0: u32, n: usize) -> Option<&mut [u16]> {
-        if y >= self.height || x0 as usize + n > self.width as usize {
+        // `x0 + n ≤ width` without the sum, which may wrap `usize` (a
+        // negative column cast to `u32` on a 32-bit target).
+        if y >= self.height || x0 > self.width || n > (self.width - x0) as usize {
             return None;
         }
         let start = y as usize * self.width as usize + x0 as usize;
@@ -74,17 +75,17 @@ impl<'a> Framebuffer<'a> {
     }
 
     /// The part of `area` inside the buffer, as (x0, y0, width, height).
+    /// In `i64`: an area may reach past `i32::MAX` (its corner plus its
+    /// size), where `embedded-graphics`' own rectangle arithmetic overflows.
     fn clip(&self, area: &Rectangle) -> Option<(usize, usize, usize, usize)> {
-        let a = area.intersection(&self.bounding_box());
-        if a.size.width == 0 || a.size.height == 0 {
-            return None;
-        }
-        Some((
-            a.top_left.x as usize,
-            a.top_left.y as usize,
-            a.size.width as usize,
-            a.size.height as usize,
-        ))
+        let span = |at: i32, len: u32, max: u32| {
+            let lo = (at as i64).max(0);
+            let hi = (at as i64 + len as i64).min(max as i64);
+            (lo < hi).then_some((lo as usize, (hi - lo) as usize))
+        };
+        let (x0, w) = span(area.top_left.x, area.size.width, self.width)?;
+        let (y0, h) = span(area.top_left.y, area.size.height, self.height)?;
+        Some((x0, y0, w, h))
     }
 }
 
@@ -136,7 +137,36 @@ impl DrawTarget for Framebuffer<'_> {
                 }
                 Ok(())
             }
-            _ => self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c))),
+            Some((x0, y0, w, h)) => {
+                // Partly inside: the colours run row-major over the whole
+                // area; those of the clipped part are written (coordinates
+                // in `i64`, see `clip`).
+                let (ax, ay) = (area.top_left.x as i64, area.top_left.y as i64);
+                let mut it = colors.into_iter();
+                for y in ay..ay + area.size.height as i64 {
+                    let mut row = it.by_ref().take(full);
+                    if y < y0 as i64 || y >= (y0 + h) as i64 {
+                        if row.count() < full {
+                            break;
+                        }
+                        continue;
+                    }
+                    let skip = (x0 as i64 - ax) as usize;
+                    let out = &mut self.buf[y as usize * self.width as usize + x0..][..w];
+                    let mut inside = row.by_ref().skip(skip);
+                    for d in out.iter_mut() {
+                        match inside.next() {
+                            Some(c) => *d = raw(c),
+                            None => return Ok(()),
+                        }
+                    }
+                    if skip + w + inside.count() < full {
+                        break;
+                    }
+                }
+                Ok(())
+            }
+            None => Ok(()),
         }
     }
 
@@ -154,5 +184,84 @@ impl DrawTarget for Framebuffer<'_> {
         let n = (self.width as usize) * (self.height as usize);
         self.buf[..n].fill(raw(color));
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Framebuffer;
+    use crate::rasterizer::tests::xorshift;
+    use embedded_graphics::draw_target::DrawTarget;
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::{Point, Size};
+    use embedded_graphics::primitives::Rectangle;
+
+    /// What `fill_contiguous` must do: the `k`-th colour goes to the `k`-th
+    /// point of the area (row-major) if that point is inside.
+    fn model(px: &mut [u16], w: i64, h: i64, area: &Rectangle, colours: &[u16]) {
+        let (ax, ay) = (area.top_left.x as i64, area.top_left.y as i64);
+        let aw = area.size.width as i64;
+        for (k, &c) in colours.iter().enumerate() {
+            if aw == 0 || k as i64 >= aw * area.size.height as i64 {
+                break;
+            }
+            let (x, y) = (ax + k as i64 % aw, ay + k as i64 / aw);
+            if (0..w).contains(&x) && (0..h).contains(&y) {
+                px[(y * w + x) as usize] = c;
+            }
+        }
+    }
+
+    /// Areas inside, partly outside on every side, wholly outside, empty,
+    /// with colours that run out early, and areas whose far corner lies
+    /// past `i32::MAX` (where `embedded-graphics`' rectangle arithmetic
+    /// overflows): the model's pixels, and no panic in a debug build.
+    #[test]
+    fn fill_contiguous_clips_like_the_model() {
+        let mut rnd = xorshift(0x00F1_11C0_0171_6005);
+        let (w, h) = (16u32, 8u32);
+        let far = [i32::MIN, i32::MIN + 3, i32::MAX - 3, i32::MAX];
+        for case in 0..20_000 {
+            let mut coord = |lim: i64| {
+                if case % 10 == 0 {
+                    far[(rnd() % 4) as usize]
+                } else {
+                    (rnd() % (2 * lim as u64 + 40)) as i32 - 20
+                }
+            };
+            let (x, y) = (coord(w as i64), coord(h as i64));
+            let size = Size::new((rnd() % 40) as u32, (rnd() % 20) as u32);
+            let area = Rectangle::new(Point::new(x, y), size);
+            let n = (size.width * size.height) as u64;
+            let count = if rnd() % 4 == 0 { rnd() % (n + 1) } else { n } as usize;
+            let colours: Vec<u16> = (0..count).map(|_| rnd() as u16).collect();
+            let (mut got, mut want) = ([0u16; 128], [0u16; 128]);
+            let mut fb = Framebuffer::new(&mut got, w, h).unwrap();
+            fb.fill_contiguous(&area, colours.iter().map(|&c| Rgb565::from(RawU16::new(c))))
+                .unwrap();
+            model(&mut want, w as i64, h as i64, &area, &colours);
+            assert_eq!(got, want, "{area:?}, {count} colours");
+            // fill_solid: the clipped part, one colour.
+            let mut fb = Framebuffer::new(&mut got, w, h).unwrap();
+            fb.fill_solid(&area, Rgb565::from(RawU16::new(0xABCD)))
+                .unwrap();
+            let all = vec![0xABCD; n as usize];
+            model(&mut want, w as i64, h as i64, &area, &all);
+            assert_eq!(got, want, "{area:?} solid");
+        }
+    }
+
+    /// `row_mut` rejects a row that does not fit, however large `n` is.
+    #[test]
+    fn row_mut_rejects_what_does_not_fit() {
+        let mut px = [0u16; 8];
+        let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+        assert_eq!(fb.row_mut(0, 1, 7).map(|r| r.len()), Some(7));
+        assert!(fb.row_mut(0, 1, 8).is_none());
+        assert!(fb.row_mut(0, 1, usize::MAX).is_none());
+        assert!(fb.row_mut(0, u32::MAX, 2).is_none());
+        assert!(fb.row_mut(1, 0, 1).is_none());
+        assert_eq!(fb.row_mut(0, 8, 0).map(|r| r.len()), Some(0));
     }
 }

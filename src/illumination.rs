@@ -41,10 +41,13 @@ use crate::vector::{Mat4, Unit3, Vec3};
 pub const FACTOR_ONE: u32 = 1 << 15;
 
 /// A per-light colour gain (`Id·Kd` or `Is·Ks` of one channel), as a 16-bit
-/// mantissa and a shift: value = `mant / 2^(sh + 1)`.
+/// mantissa and a shift: value = `mant / 2^(sh + 1)`, `sh ≤ 31`.
 ///
-/// Range: 0 and [2⁻¹⁷, 256]; products above 256 are clamped to 256 (see
-/// [`crate::color`] for why that clamp is invisible), below 2⁻¹⁷ they are 0.
+/// Range: 0 and [2⁻³², 256]; products above 256 are clamped to 256 (see
+/// [`crate::color`] for why that clamp is invisible). Gains of 2⁻¹⁶ and more
+/// keep 16 significant bits; below 2⁻¹⁶ (`sh = 31`, e.g. an area light's
+/// 1/k² share on a dark material) the gain is the exact `Q.32` product,
+/// with fewer bits.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Gain {
     mant: u16,
@@ -89,18 +92,30 @@ impl Gain {
         Gain::from_q32(a as u64 * b as u64)
     }
 
-    /// Applies the gain to a `Q.15` factor `x ≤ 2¹⁵`, giving `Q.16`,
-    /// rounded to nearest: `mant · x < 2¹⁶·2¹⁵ = 2³¹` and the rounding half
-    /// is at most `2³⁰` (`sh ≤ 31`), so the sum stays below `2³²`. Every
-    /// caller passes a factor clamped to 2¹⁵.
+    /// Applies the gain to a `Q.15` factor `x`, giving `Q.16`, rounded to
+    /// nearest.
+    ///
+    /// A factor above 1 (`x > 2¹⁵`, outside the factors' range) is clamped
+    /// to 1 first (one `min`), so the result is at most the gain itself.
     #[inline(always)]
     pub const fn apply(self, x: u32) -> u32 {
+        let x = if x > FACTOR_ONE { FACTOR_ONE } else { x };
+        self.apply_in_range(x)
+    }
+
+    /// [`Gain::apply`] for a factor `x ≤ 2¹⁵` the caller has proved, without
+    /// the clamp: `mant · x ≤ (2¹⁶ − 1)·2¹⁵ < 2³¹` and the rounding half is
+    /// at most `2³⁰` (`sh ≤ 31`), so the sum stays below `2³²`.
+    #[inline(always)]
+    pub(crate) const fn apply_in_range(self, x: u32) -> u32 {
         (self.mant as u32 * x + ((1u32 << self.sh) >> 1)) >> self.sh
     }
 
-    /// The gain's value as `f64`-free rational parts: `(mant, 2^(sh+1))`.
-    pub const fn parts(self) -> (u16, u32) {
-        (self.mant, 1u32 << (self.sh as u32 + 1))
+    /// The gain's value as exact rational parts: `(mant, 2^(sh + 1))`,
+    /// value = `mant / 2^(sh + 1)`. The denominator is a `u64` because it
+    /// reaches 2³² for gains below 2⁻¹⁶ (`sh = 31`).
+    pub const fn parts(self) -> (u16, u64) {
+        (self.mant, 1u64 << (self.sh as u32 + 1))
     }
 }
 
@@ -143,7 +158,9 @@ pub struct Surface {
 
 /// Adds one light's contribution to `acc` (`Q.16` per channel), given the
 /// unit vector `l` towards the light and the product `sf = s·f` of the spot
-/// and attenuation factors (`Q.15`, at most 2¹⁵).
+/// and attenuation factors (`Q.15`, at most 2¹⁵; a larger `sf`, which a
+/// custom [`Falloff`](crate::light::Falloff) could return, is clamped to
+/// 2¹⁵).
 ///
 /// This is the body of the sum in SPEC.md 3, shared by every light kind.
 #[inline(always)]
@@ -190,11 +207,16 @@ fn add_light_with<S: Specular>(
     if nl <= 0 || sf == 0 {
         return;
     }
+    // sf ≤ 2^15 (documented clamp; every light of the crate already gives
+    // at most 2^15, so this changes nothing for them).
+    let sf = sf.min(FACTOR_ONE);
     // nl ≤ 2^28 + a few units of rounding: Q.28 → Q.15, clamped to 1.
     let nl15 = ((nl as u32 + (1 << 12)) >> 13).min(FACTOR_ONE);
+    // nl15·sf ≤ 2^30: diff ≤ 2^15, and so is spec below (sp ≤ 2^15, the
+    // range of pow_from_delta), as Gain::apply_in_range needs.
     let diff = (nl15 * sf + (1 << 14)) >> 15;
     for (a, gd) in acc.iter_mut().zip(g.diffuse.iter()) {
-        *a = a.saturating_add(gd.apply(diff));
+        *a = a.saturating_add(gd.apply_in_range(diff));
     }
     if S::ENABLED && !ctx.view.is_zero() {
         let Some(delta) = delta(nl) else {
@@ -203,7 +225,7 @@ fn add_light_with<S: Specular>(
         let sp = pow_from_delta(delta, ctx.shininess) as u32;
         let spec = (sp * sf + (1 << 14)) >> 15;
         for (a, gs) in acc.iter_mut().zip(g.specular.iter()) {
-            *a = a.saturating_add(gs.apply(spec));
+            *a = a.saturating_add(gs.apply_in_range(spec));
         }
     }
 }

@@ -107,7 +107,9 @@ impl<const N: usize> RasterVertex<N> {
     }
 }
 
-/// The inclusive pixel rectangle that may be drawn (the target's bounds).
+/// The inclusive pixel rectangle that may be drawn (the target's bounds),
+/// at most [`CLIP_LIMIT`] pixels a side for the rasterizer to draw in it
+/// (see [`ClipRect::within_limits`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ClipRect {
     /// First column.
@@ -120,7 +122,29 @@ pub struct ClipRect {
     pub y1: i32,
 }
 
+/// The most pixels a [`ClipRect`] may span on either axis: the renderer's
+/// largest target ([`crate::render::MAX_TARGET_SIDE`]). Attributes are
+/// stepped across it, row by row and column by column; with gradients of
+/// at most 2⁴⁰ per pixel that stays within `i64`.
+pub const CLIP_LIMIT: i64 = 1 << 20;
+
 impl ClipRect {
+    /// Whether the rasterizer draws in this rectangle: each side at most
+    /// [`CLIP_LIMIT`] pixels (an empty rectangle, `x0 > x1` or `y0 > y1`,
+    /// qualifies and draws nothing).
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, CLIP_LIMIT};
+    /// assert!(ClipRect::of_size(320, 240).unwrap().within_limits());
+    /// assert!(ClipRect::of_size(CLIP_LIMIT as u32, 1).unwrap().within_limits());
+    /// assert!(!ClipRect::of_size(CLIP_LIMIT as u32 + 1, 1).unwrap().within_limits());
+    /// ```
+    #[inline]
+    pub fn within_limits(&self) -> bool {
+        let side = |a: i32, b: i32| (b as i64) - (a as i64) < CLIP_LIMIT;
+        side(self.x0, self.x1) && side(self.y0, self.y1)
+    }
+
     /// The rectangle of a `width × height` target at the origin; `None`
     /// when it is empty.
     pub fn of_size(width: u32, height: u32) -> Option<ClipRect> {
@@ -520,7 +544,8 @@ pub const BOUNDED_GRADIENT: i64 = 1 << 24;
 impl<'v, const N: usize> Triangle<'v, N> {
     /// Sets up a triangle for drawing inside `clip`. `None` when it has no
     /// area, is a back face and `cull` is set, cannot touch `clip`, or has
-    /// a vertex outside the limits (see [`RasterVertex::within_limits`]).
+    /// a vertex outside the limits (see [`RasterVertex::within_limits`]),
+    /// or `clip` is larger than they allow ([`ClipRect::within_limits`]).
     /// A back face that is kept is reoriented (its `facing` says so).
     ///
     /// ```
@@ -563,7 +588,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
         rows: (i32, i32),
         cull: bool,
     ) -> Option<Self> {
-        if !v.iter().all(RasterVertex::within_limits) {
+        if !(v.iter().all(RasterVertex::within_limits) && viewport.within_limits()) {
             return None;
         }
         Self::setup_rows_within(v, viewport, rows, cull)
@@ -580,7 +605,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
         rows: (i32, i32),
         cull: bool,
     ) -> Option<Self> {
-        debug_assert!(v.iter().all(RasterVertex::within_limits));
+        debug_assert!(v.iter().all(RasterVertex::within_limits) && viewport.within_limits());
         let clip = viewport;
         let caller = v;
         let a = area2(v);
@@ -967,8 +992,9 @@ fn exact_start<const N: usize>(
 
 /// Sets up triangle `v` and calls `f` with each of its spans inside `clip`,
 /// top to bottom; returns how it faced, or `None` if it drew nothing
-/// (no area, culled, no pixel centre inside, or a vertex outside the
-/// limits: see [`RasterVertex::within_limits`]). Set-up and span walk are
+/// (no area, culled, no pixel centre inside, or a vertex or `clip` outside
+/// the limits: see [`RasterVertex::within_limits`] and
+/// [`ClipRect::within_limits`]). Set-up and span walk are
 /// one inlined step: the set-up triangle never leaves the stack frame.
 ///
 /// ```

@@ -29,7 +29,8 @@ use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::OriginDimensions;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::prelude::{RawData, Size};
+use embedded_graphics::prelude::{Point, RawData, Size};
+use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::{Camera, CameraError, ProjectionCoeffs};
 use crate::color::{Rgb, Shade};
@@ -133,7 +134,8 @@ pub enum RenderError<E> {
     /// The band renderer's colour band holds fewer than `width × h`
     /// pixels, or its height `h` is 0.
     BandTooSmall,
-    /// The target is wider or taller than 2²⁰ pixels.
+    /// The target is wider or taller than 2²⁰ pixels, or its bounding box
+    /// reaches past `i32::MAX` (its last column or row is not a `Point`).
     TargetTooLarge,
     /// The target reported an error.
     Target(E),
@@ -147,13 +149,18 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
             RenderError::CacheTooSmall => f.write_str("vertex cache shorter than the vertex count"),
             RenderError::DepthTooSmall => f.write_str("depth buffer smaller than the target"),
             RenderError::BandTooSmall => f.write_str("colour band smaller than width x height"),
-            RenderError::TargetTooLarge => f.write_str("target larger than 2^20 pixels a side"),
+            RenderError::TargetTooLarge => {
+                f.write_str("target larger than 2^20 pixels a side, or ending past i32::MAX")
+            }
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }
     }
 }
 
 /// Counts of one draw call.
+///
+/// Each count saturates at `u32::MAX` (a draw call into a target of 2²⁰ ×
+/// 2²⁰ pixels, or one cut in many bands, can pass it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct DrawStats {
     /// Triangles in the mesh.
@@ -222,6 +229,8 @@ pub struct CachedVertex {
 
 /// The largest target side in pixels.
 pub const MAX_TARGET_SIDE: u32 = 1 << 20;
+// The renderer's viewports are clip rectangles the rasterizer takes.
+const _: () = assert!(MAX_TARGET_SIDE as i64 == crate::rasterizer::CLIP_LIMIT);
 
 /// A frame's renderer: camera, model transform, prepared lighting and
 /// options.
@@ -318,7 +327,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             target,
             origin: bb.top_left,
         };
-        self.draw_into::<M, _, D>(mesh, &mut sink, bb.size, depth, cache)
+        self.draw_into::<M, _, D>(mesh, &mut sink, bb, depth, cache)
     }
 
     /// As [`Renderer::draw`], into a [`Framebuffer`] written in place: the
@@ -335,15 +344,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         M: ShadingMode,
         D: DepthTest,
     {
-        let size = fb.size();
-        self.draw_into::<M, _, D>(mesh, &mut FramebufferSink { fb }, size, depth, cache)
+        let bb = Rectangle::new(Point::zero(), fb.size());
+        self.draw_into::<M, _, D>(mesh, &mut FramebufferSink { fb }, bb, depth, cache)
     }
 
     fn draw_into<M, P, D>(
         &self,
         mesh: &Mesh,
         sink: &mut P,
-        size: Size,
+        bb: Rectangle,
         depth: &mut D,
         cache: &mut [CachedVertex],
     ) -> Result<DrawStats, RenderError<P::Error>>
@@ -357,8 +366,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         if cache.len() < n {
             return Err(RenderError::CacheTooSmall);
         }
+        let size = bb.size;
         let (w, h) = (size.width, size.height);
-        check_size(size)?;
+        check_bounds(&bb)?;
         if D::ENABLED
             && depth
                 .row(h.saturating_sub(1), w.saturating_sub(1), 1)
@@ -369,7 +379,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             return Err(RenderError::DepthTooSmall);
         }
         let mut stats = DrawStats {
-            triangles: mesh.indices.len() as u32,
+            triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
         // An empty target draws nothing (and has no aspect ratio).
@@ -434,6 +444,17 @@ fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
 /// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
 pub(crate) fn check_size<E>(size: Size) -> Result<(), RenderError<E>> {
     if size.width > MAX_TARGET_SIDE || size.height > MAX_TARGET_SIDE {
+        return Err(RenderError::TargetTooLarge);
+    }
+    Ok(())
+}
+
+/// [`check_size`] for a target's bounding box, which must also end within
+/// `i32` (its last column and row are `Point`s the renderer sends).
+pub(crate) fn check_bounds<E>(bb: &Rectangle) -> Result<(), RenderError<E>> {
+    check_size(bb.size)?;
+    let end = |at: i32, len: u32| at as i64 + len as i64 - 1 <= i32::MAX as i64;
+    if !end(bb.top_left.x, bb.size.width) || !end(bb.top_left.y, bb.size.height) {
         return Err(RenderError::TargetTooLarge);
     }
     Ok(())
@@ -710,7 +731,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             c.front = self.r.lighting.shade(c.eye, n);
             c.flags |= F_FRONT;
         }
-        stats.lit += 1;
+        stats.lit = stats.lit.saturating_add(1);
     }
 
     /// Clips, culls, lights and rasterizes one triangle (its rows in
@@ -745,7 +766,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             let mut poly = [PolyVert::Orig(0); 4];
             let mut win = [[0i64; 3]; 4];
             let mut count = 0;
-            stats.clipped += 1;
+            stats.clipped = stats.clipped.saturating_add(1);
             let clip = [c.clip(self, 0), c.clip(self, 1), c.clip(self, 2)];
             let d = clip.map(|c| c[2] + c[3]);
             for a in 0..3 {
@@ -801,7 +822,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 let n = if lit_back { n.neg() } else { n };
                 let colour = self.r.lighting.shade(centroid(e), n);
                 let plain = RawU16::from(colour.to_rgb565()).into_inner();
-                stats.lit += 1;
+                stats.lit = stats.lit.saturating_add(1);
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
                 let extra = CarryExtra {
                     z_inside,
@@ -922,7 +943,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
             if let Some(t) = Triangle::setup_rows_within(tri, self.viewport, self.rows, false) {
-                stats.drawn += 1;
+                stats.drawn = stats.drawn.saturating_add(1);
                 let rest = t.walk_rows(|s| {
                     if res.is_ok() {
                         res = span(s, stats);
@@ -983,8 +1004,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
     ) -> Result<(), E> {
         let mut res = Ok(());
-        stats.drawn += 1;
-        stats.carried += 1;
+        stats.drawn = stats.drawn.saturating_add(1);
+        stats.carried = stats.carried.saturating_add(1);
         let rest = walk.resize::<N>().resume(self.rows, |s| {
             if res.is_ok() {
                 res = span(s, stats);
@@ -1126,7 +1147,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             inside: z_inside && s.bounded,
         };
         let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
-        stats.pixels += w;
+        stats.pixels = stats.pixels.saturating_add(w);
         Ok(())
     }
 }

@@ -255,6 +255,42 @@ pub struct Mat4 {
 
 const ONE24: i32 = 1 << COORD_FRAC;
 
+/// `x` modulo `τ = 2π` as an `f32` (`0x40C9_0FDB` = `T·2⁻²¹`,
+/// `T = 0xC9_0FDB`) for a finite `x`, exactly (the remainder `fmod`
+/// gives: in (−τ, τ), with the sign of `x`). Used by [`Mat4::rotation`]
+/// for `|x| ≥ 2³³`. Integer arithmetic only: the same bits everywhere, no
+/// division.
+fn rem_tau(x: f32) -> f32 {
+    const T: u32 = 0x00C9_0FDB;
+    let b = x.to_bits();
+    let exp = (b >> 23) & 0xFF;
+    if exp < 129 {
+        // |x| < 4 < τ (zero and subnormals included): already reduced.
+        return x;
+    }
+    // x = ±M·2^(exp − 150), M < 2^24 with its hidden bit (x is normal).
+    // M < 2^24 < 2T, so one subtraction gives M mod T.
+    let m = (b & 0x7F_FFFF) | 0x80_0000;
+    let mut r = if m >= T { m - T } else { m };
+    // x mod τ = 2^−21 · (M·2^(exp − 129) mod T): double exp − 129 times
+    // (at most 125, for exp = 254), each r < T < 2^24 so 2r < 2^25.
+    let mut k = exp - 129;
+    while k > 0 {
+        r <<= 1;
+        if r >= T {
+            r -= T;
+        }
+        k -= 1;
+    }
+    // r < 2^24 is exact in f32, and so is the product by 2^−21.
+    let v = r as f32 * (1.0 / (1u32 << 21) as f32);
+    if b >> 31 == 1 {
+        -v
+    } else {
+        v
+    }
+}
+
 impl Default for Mat4 {
     fn default() -> Self {
         Mat4::IDENTITY
@@ -298,6 +334,14 @@ impl Mat4 {
     /// the host and on a Cortex-M. An `axis` above 2 counts as z; a
     /// non-finite angle gives the identity.
     ///
+    /// Every finite angle gives a rotation matrix with entries in [−1, 1].
+    /// Below 2³³ in magnitude the angle is reduced to [−π, π] by
+    /// subtracting the nearest multiple of 2π; from 2³³ on (where one `f32`
+    /// step is 1024 radians, so the angle no longer says which way the
+    /// model faces, and the nearest multiple would not fit an `i32`) it is
+    /// first reduced exactly modulo 2π as an `f32` (`6.2831855`), the
+    /// remainder of `fmod`, by integer arithmetic.
+    ///
     /// ```
     /// use fixshade::{Mat4, Vec3};
     /// let quarter = Mat4::rotation(1, core::f32::consts::FRAC_PI_2);
@@ -309,13 +353,28 @@ impl Mat4 {
             return Mat4::IDENTITY;
         }
         // Reduce to [-π, π] so the approximation stays in its best range.
+        // micromath's round (and its cos's floor) convert to i32, which
+        // saturates once |angle / τ| nears 2^31. Below 2^33, |angle / τ| <
+        // 1.4·10^9 and the rounding of τ·n leaves |a| within π plus a few
+        // f32 steps (2^10 at 2^33), which the cos's own floor reduces
+        // (tests/bad_input.rs checks every magnitude). From 2^33, fmod first.
+        const HUGE: f32 = (1u64 << 33) as f32;
         let tau = 2.0 * core::f32::consts::PI;
+        let angle = if angle < HUGE && angle > -HUGE {
+            angle
+        } else {
+            rem_tau(angle)
+        };
         let a = angle - tau * micromath::F32Ext::round(angle / tau);
         let (s, c) = (micromath::F32Ext::sin(a), micromath::F32Ext::cos(a));
         // 1/√(s² + c²) ≈ (3 − (s² + c²)) / 2 near 1 (one Newton step from 1).
         let k = 0.5 * (3.0 - (s * s + c * c));
         let (s, c) = (s * k, c * k);
-        let q = |v: f32| (v * (1u32 << COORD_FRAC) as f32) as i32;
+        // |s|, |c| ≤ 1: micromath's cos of a reduced argument is in [−1, 1]
+        // and t·(3 − t²)/2 ≤ 1 (less with the other term in k). The clamp
+        // (a no-op for every angle the tests try) makes |q| ≤ 2^24 hold
+        // whatever the last bit of rounding, so `-s` cannot overflow.
+        let q = |v: f32| ((v * (1u32 << COORD_FRAC) as f32) as i32).clamp(-ONE24, ONE24);
         let (s, c, one) = (q(s), q(c), ONE24);
         let m = match axis {
             0 => [[one, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, one]],

@@ -5,7 +5,7 @@
 //! rule (SPEC.md 5), evaluated directly at every pixel.
 
 use fixshade::rasterizer::{
-    rasterize_rows, ClipRect, RasterVertex, Triangle, ATTR_LIMIT, COORD_LIMIT, DRIFT,
+    rasterize_rows, ClipRect, RasterVertex, Triangle, ATTR_LIMIT, CLIP_LIMIT, COORD_LIMIT, DRIFT,
 };
 use proptest::prelude::*;
 
@@ -300,5 +300,63 @@ proptest! {
             _ => at_limit[k].attr[0] = if beyond > 0 { ATTR_LIMIT - 1 } else { -ATTR_LIMIT },
         }
         prop_assert_eq!(spans(&clamped), spans(&at_limit));
+    }
+}
+
+/// A clip rectangle beyond `CLIP_LIMIT` pixels a side is refused (`None`,
+/// nothing drawn): there the row walk's attribute steps could leave `i64`
+/// (found by an audit: a sliver with vertices at the limits, drawn in the
+/// rows near 2^24 of a 2^25-pixel viewport). At the limit itself the same
+/// triangles draw without overflow in a debug build.
+#[test]
+fn clip_rectangles_beyond_the_limit_draw_nothing() {
+    let a = ATTR_LIMIT;
+    let v = [
+        RasterVertex {
+            x: 0,
+            y: COORD_LIMIT,
+            attr: [a - 1],
+        },
+        RasterVertex {
+            x: COORD_LIMIT,
+            y: 1,
+            attr: [-a],
+        },
+        RasterVertex {
+            x: 67_108_863,
+            y: 201_326_593,
+            attr: [-a],
+        },
+    ];
+    assert!(v.iter().all(RasterVertex::within_limits));
+    for side in [1u32 << 24, 1 << 25, u32::MAX] {
+        let clip = ClipRect::of_size(side, side).unwrap();
+        assert!(!clip.within_limits());
+        let mut spans = 0;
+        let rows = ((1 << 24) - 3000, 1 << 24);
+        assert_eq!(rasterize_rows(&v, clip, rows, false, |_| spans += 1), None);
+        assert!(Triangle::setup(&v, clip, false).is_none());
+        assert_eq!(spans, 0);
+    }
+    // At the limit: the same sliver and its mirror images, in every band
+    // of 4096 rows; each covered row's span lies within the clip.
+    let side = CLIP_LIMIT as u32;
+    let clip = ClipRect::of_size(side, side).unwrap();
+    assert!(clip.within_limits());
+    for flip in 0..4 {
+        let w = v.map(|mut p| {
+            if flip & 1 == 1 {
+                p.x = COORD_LIMIT - p.x;
+            }
+            if flip & 2 == 2 {
+                p.y = COORD_LIMIT - p.y;
+            }
+            p
+        });
+        for y0 in (0..side as i32).step_by(4096) {
+            rasterize_rows(&w, clip, (y0, y0 + 4095), false, |s| {
+                assert!(s.x0 >= 0 && s.x1 < side as i32 && (y0..y0 + 4096).contains(&s.y));
+            });
+        }
     }
 }

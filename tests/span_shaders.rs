@@ -145,3 +145,143 @@ fn pair_shader_refuses_edges_and_keeps_gradients_monotonic() {
     let end = (ONE / 2 + d * (n as i64 - 1)) >> 16;
     assert_eq!((reds[0], *reds.last().unwrap()), (0, end));
 }
+
+/// Bad input to the public span functions and shaders (any step, any
+/// depth, shaders stepped past their span or from the ends of their
+/// fields' types): the checked constructors say `None`, the clamped paths
+/// clamp, and nothing panics in a debug build (overflow checks on).
+#[test]
+fn extreme_steps_and_depths_do_not_panic() {
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::{Point, Size};
+    use embedded_graphics::primitives::Rectangle;
+    use fixshade::depth::DepthBuffer;
+    use fixshade::framebuffer::Framebuffer;
+    use fixshade::span::{
+        depth_row_pixels, emit, ClampedGouraud, FlatShader, FramebufferSink, PixelSink, SpanDepth,
+        TargetSink,
+    };
+    use fixshade::Shade;
+
+    // Checked constructors: a step whose product with the length leaves
+    // i64, at both ends.
+    for d in [1i64 << 50, i64::MAX, i64::MIN, -(1 << 50)] {
+        assert!(PackedGouraud::new([ONE; 3], [d, 0, 0], 1 << 14).is_none());
+        assert!(PairGouraud::new([ONE; 3], [0, d, 0], 1 << 14).is_none());
+        assert!(PackedGouraud::new([ONE; 3], [0, 0, d], u32::MAX).is_none());
+    }
+    // Length 1: the step is never used, whatever it is.
+    assert!(PackedGouraud::new([ONE; 3], [i64::MAX; 3], 1).is_some());
+
+    // A pair shader walked far past the span it was made for: its block
+    // anchors wrap, its pixels are garbage but nothing panics.
+    let mut sh = PairGouraud::new([1 << 16, 6621, 1 << 16], [0, 4_186_115, 0], 2).unwrap();
+    sh.fill_row(&mut [0u16; 600]);
+    sh.skip(u32::MAX);
+    sh.next();
+
+    let flat = |x: i32| FlatShader {
+        plain: 7,
+        shade: Shade::BLACK,
+        dither: true,
+        x,
+        y: 0,
+    };
+    let mut f = flat(i32::MAX);
+    f.next();
+    f.skip(u32::MAX);
+    let mut g = ClampedGouraud {
+        c: [i64::MAX, i64::MIN, 0],
+        d: [1 << 40, -(1 << 40), i64::MAX],
+        dither: true,
+        x: i32::MAX,
+        y: 0,
+    };
+    for _ in 0..4 {
+        g.next();
+        g.skip(1 << 24);
+    }
+    assert_eq!(g.c[0], i64::MAX, "saturated, not wrapped");
+
+    // Depths and steps at the ends of i64: the depth is clamped per pixel.
+    for (z, dz) in [
+        (i64::MAX, 1),
+        (i64::MIN, -1),
+        (0, 1 << 61),
+        (1 << 23, i64::MAX),
+        (i64::MAX, i64::MIN),
+    ] {
+        let (mut row, mut drow) = ([0u16; 8], [u16::MAX; 8]);
+        let mut sh = flat(0);
+        let n = depth_row_pixels(&mut sh, &mut row, &mut drow, z, dz);
+        assert!(n <= 8);
+        sh.depth_row(&mut row, &mut drow, z, dz);
+        for inside in [false, true] {
+            let mut px = [0u16; 8];
+            let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+            let mut zs = [u16::MAX; 8];
+            let mut depth = DepthBuffer::new(&mut zs, 8, 1).unwrap();
+            let z = SpanDepth { z, dz, inside };
+            // Framebuffer rows (in place) and a plain target (runs).
+            emit(
+                &mut FramebufferSink { fb: &mut fb },
+                &mut depth,
+                0,
+                0,
+                8,
+                z,
+                flat(0),
+            )
+            .unwrap();
+            let mut sink = TargetSink {
+                target: &mut fb,
+                origin: Point::zero(),
+            };
+            emit(&mut sink, &mut depth, 0, 0, 8, z, flat(0)).unwrap();
+        }
+    }
+    // A depth of 0 at the first pixel stepping by +∞: only pixels whose
+    // clamped depth passes are written.
+    let (mut row, mut drow) = ([0u16; 4], [1u16; 4]);
+    assert_eq!(
+        depth_row_pixels(
+            &mut FlatShader {
+                dither: false,
+                ..flat(0)
+            },
+            &mut row,
+            &mut drow,
+            0,
+            i64::MAX
+        ),
+        1
+    );
+    assert_eq!((row, drow), ([7, 0, 0, 0], [0, 1, 1, 1]));
+
+    // A target sink placed so that a span would end past i32::MAX (or its
+    // origin plus the column overflows): not sent, no panic.
+    let mut px = [0u16; 8];
+    let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+    for (origin, x0) in [
+        (i32::MAX - 3, 0),
+        (0, i32::MAX - 3),
+        (1, i32::MAX),
+        (-1, i32::MIN),
+    ] {
+        let mut sink = TargetSink {
+            target: &mut fb,
+            origin: Point::new(origin, 0),
+        };
+        sink.fill(0, x0, 8, core::iter::repeat(0xFFFF)).unwrap();
+    }
+    assert_eq!(px, [0; 8]);
+    // fill_solid far out: clipped in i64.
+    let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+    use embedded_graphics::draw_target::DrawTarget;
+    fb.fill_solid(
+        &Rectangle::new(Point::new(i32::MAX - 1, 0), Size::new(10, 1)),
+        Rgb565::new(1, 1, 1),
+    )
+    .unwrap();
+    assert_eq!(px, [0; 8]);
+}
