@@ -10,6 +10,13 @@ use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
 use crate::widening::mul_i32;
 
 /// Why a camera could not be built.
+///
+/// ```
+/// use fixshade::camera::{Camera, CameraError};
+/// let up = [0.0, 1.0, 0.0];
+/// assert_eq!(Camera::look_at([1.0; 3], [1.0; 3], up), Err(CameraError::Degenerate));
+/// assert_eq!(Camera::look_at([f32::NAN, 0.0, 0.0], [0.0; 3], up), Err(CameraError::NotFinite));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum CameraError {
     /// A number was NaN or infinite.
@@ -18,7 +25,8 @@ pub enum CameraError {
     OutOfRange,
     /// `eye == target`, or `up` parallel to the view direction.
     Degenerate,
-    /// `near ≤ 0`, `far ≤ near`, a field of view outside (0°, 180°), or a
+    /// `near ≤ 0`, `far ≤ near`, `far ≥ 128` (beyond the `I8F24` range
+    /// of eye-space positions), a field of view outside (0°, 180°), or a
     /// non-positive orthographic height.
     BadProjection,
 }
@@ -44,6 +52,16 @@ impl core::fmt::Display for CameraError {
 }
 
 /// Which projection, with its parameters.
+///
+/// ```
+/// use fixshade::camera::{Camera, Projection};
+/// let ortho = Projection::Orthographic { height: 2.0 };
+/// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// let p = cam.with_projection(ortho, 1.0, 5.0).unwrap().projection_for(100, 100).unwrap();
+/// // A view volume 2 units high (and, at aspect 1, wide) maps to [-1, 1]: scale 1.
+/// assert_eq!((p.sx, p.sy), (1 << 24, 1 << 24));
+/// assert!(!p.is_perspective());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
     /// OpenGL perspective: vertical field of view in degrees.
@@ -85,11 +103,34 @@ pub struct Camera {
 impl Camera {
     /// A look-at view (gluLookAt) with a default 60° perspective, near 0.1,
     /// far 10.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, CameraError, Projection};
+    /// use fixshade::Vec3;
+    /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// assert_eq!(cam.projection, Projection::Perspective { fovy_deg: 60.0 });
+    /// assert_eq!((cam.near, cam.far), (0.1, 10.0));
+    /// // The target lies straight ahead, 3 units down the eye's −z axis.
+    /// assert_eq!(cam.view.transform_point(Vec3::ZERO), Vec3::from_f32(0.0, 0.0, -3.0).unwrap());
+    /// // `up` along the view direction leaves the roll undefined.
+    /// let err = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 0.0, 1.0]);
+    /// assert_eq!(err, Err(CameraError::Degenerate));
+    /// ```
     pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Camera, CameraError> {
         Camera::look_at_f64(eye.map(f64::from), target.map(f64::from), up.map(f64::from))
     }
 
     /// As [`Camera::look_at`], from `f64`s.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, CameraError};
+    /// let up = [0.0, 1.0, 0.0];
+    /// let a = Camera::look_at_f64([1.0, 2.0, 3.0], [0.0; 3], up).unwrap();
+    /// assert_eq!(Camera::look_at([1.0, 2.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]), Ok(a));
+    /// // An eye 200 units away puts the view's translation outside I8F24.
+    /// let far = Camera::look_at_f64([200.0, 0.0, 0.0], [0.0; 3], up);
+    /// assert_eq!(far, Err(CameraError::OutOfRange));
+    /// ```
     pub fn look_at_f64(
         eye: [f64; 3],
         target: [f64; 3],
@@ -132,6 +173,15 @@ impl Camera {
     }
 
     /// A camera with a given view matrix and the default projection.
+    ///
+    /// ```
+    /// use fixshade::camera::Camera;
+    /// use fixshade::Mat4;
+    /// const CAM: Camera = Camera::from_view(Mat4::IDENTITY);
+    /// // The identity view: the eye at the origin looking down −z, y up.
+    /// let looking = Camera::look_at([0.0; 3], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]).unwrap();
+    /// assert_eq!(CAM, looking);
+    /// ```
     pub const fn from_view(view: Mat4) -> Camera {
         Camera {
             view,
@@ -142,20 +192,38 @@ impl Camera {
     }
 
     /// Sets the projection and the near and far planes.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, CameraError, Projection};
+    /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let p = Projection::Perspective { fovy_deg: 45.0 };
+    /// let c = cam.with_projection(p, 0.5, 20.0).unwrap();
+    /// assert_eq!((c.projection, c.near, c.far), (p, 0.5, 20.0));
+    /// assert_eq!(cam.with_projection(p, 2.0, 1.0), Err(CameraError::BadProjection));
+    /// assert_eq!(cam.with_projection(p, 0.0, 1.0), Err(CameraError::BadProjection));
+    /// let wide = Projection::Perspective { fovy_deg: 180.0 };
+    /// assert_eq!(cam.with_projection(wide, 0.1, 1.0), Err(CameraError::BadProjection));
+    /// assert_eq!(cam.with_projection(p, f32::NAN, 1.0), Err(CameraError::NotFinite));
+    /// let nan = Projection::Perspective { fovy_deg: f32::NAN };
+    /// assert_eq!(cam.with_projection(nan, 0.1, 1.0), Err(CameraError::NotFinite));
+    /// let inf = Projection::Orthographic { height: f32::INFINITY };
+    /// assert_eq!(cam.with_projection(inf, 0.1, 1.0), Err(CameraError::NotFinite));
+    /// assert_eq!(cam.with_projection(p, 0.1, 128.0), Err(CameraError::BadProjection));
+    /// ```
     pub fn with_projection(
         mut self,
         projection: Projection,
         near: f32,
         far: f32,
     ) -> Result<Camera, CameraError> {
-        let ok = match projection {
-            Projection::Perspective { fovy_deg } => fovy_deg > 0.0 && fovy_deg < 180.0,
-            Projection::Orthographic { height } => height > 0.0 && height.is_finite(),
+        let (ok, param) = match projection {
+            Projection::Perspective { fovy_deg } => (fovy_deg > 0.0 && fovy_deg < 180.0, fovy_deg),
+            Projection::Orthographic { height } => (height > 0.0, height),
         };
-        if !near.is_finite() || !far.is_finite() {
+        if !near.is_finite() || !far.is_finite() || !param.is_finite() {
             return Err(CameraError::NotFinite);
         }
-        if !ok || near.is_nan() || far.is_nan() || near <= 0.0 || far <= near || far >= 128.0 {
+        if !ok || near <= 0.0 || far <= near || far >= 128.0 {
             return Err(CameraError::BadProjection);
         }
         self.projection = projection;
@@ -171,6 +239,20 @@ impl Camera {
     /// reach 127 in value (a field of view under about 1°, an extreme
     /// aspect ratio, or `far` within 1% of `near`): [`ProjectionCoeffs::clip`]
     /// relies on them being below 2⁷.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, CameraError, Projection};
+    /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let right = Projection::Perspective { fovy_deg: 90.0 };
+    /// let square = cam.with_projection(right, 1.0, 3.0).unwrap();
+    /// let p = square.projection_for(200, 100).unwrap();
+    /// // cot(45°) = 1 vertically, halved horizontally by the aspect ratio 2.
+    /// assert!((p.sy - (1 << 24)).abs() <= 1 && (p.sx - (1 << 23)).abs() <= 1);
+    /// assert_eq!(square.projection_for(0, 0), square.projection_for(1, 1));
+    /// let tiny = Projection::Perspective { fovy_deg: 0.5 };
+    /// let narrow = cam.with_projection(tiny, 1.0, 3.0).unwrap();
+    /// assert_eq!(narrow.projection_for(100, 100), Err(CameraError::BadProjection));
+    /// ```
     pub fn projection_for(&self, width: u32, height: u32) -> Result<ProjectionCoeffs, CameraError> {
         let p = self.coeffs(width, height);
         let lim = 127u32 << COORD_FRAC;
@@ -252,6 +334,17 @@ fn cos_over_sin(x: f64) -> f64 {
 /// The non-zero coefficients of an OpenGL projection matrix in `Q.24`:
 /// `x_c = sx·x + tx`, `y_c = sy·y + ty`, `z_c = a·z + b·w`,
 /// `w_c = −z` (perspective) or `1` (orthographic).
+///
+/// ```
+/// use fixshade::camera::{Camera, Projection};
+/// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// let height2 = Projection::Orthographic { height: 2.0 };
+/// let ortho = cam.with_projection(height2, 1.0, 3.0).unwrap();
+/// let p = ortho.projection_for(100, 100).unwrap();
+/// // a = −2/(far − near) = −1, b = −(far + near)/(far − near) = −2, in Q.24.
+/// assert_eq!((p.a, p.b), (-1 << 24, -2 << 24));
+/// assert_eq!((p.tx, p.ty, p.perspective), (0, 0, false));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ProjectionCoeffs {
     /// `P[0][0]`.
@@ -272,14 +365,36 @@ pub struct ProjectionCoeffs {
 
 impl ProjectionCoeffs {
     /// Whether this is a perspective projection.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, Projection};
+    /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// assert!(cam.projection_for(64, 64).unwrap().is_perspective());
+    /// let ortho = cam.with_projection(Projection::Orthographic { height: 4.0 }, 0.1, 10.0);
+    /// let ortho = ortho.unwrap();
+    /// assert!(!ortho.projection_for(64, 64).unwrap().is_perspective());
+    /// ```
     pub const fn is_perspective(&self) -> bool {
         self.perspective
     }
 
     /// Clip coordinates `[x, y, z, w]` (`I40F24` raw) of an eye-space point.
     /// Coefficients are below 2⁷ in value (2³¹ raw, checked by
-    /// [`Camera::with_projection`]) and coordinates below 2³¹ raw, so each
+    /// [`Camera::projection_for`]) and coordinates below 2³¹ raw, so each
     /// product is below 2⁶² and the sums below 2⁶³.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, Projection};
+    /// use fixshade::Vec3;
+    /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let persp = Projection::Perspective { fovy_deg: 90.0 };
+    /// let p = cam.with_projection(persp, 1.0, 3.0).unwrap().projection_for(100, 100).unwrap();
+    /// // Points on the near and far planes land on z_c = −w_c and z_c = +w_c; w_c = −z_e.
+    /// let near = p.clip(Vec3::from_f32(0.0, 0.0, -1.0).unwrap());
+    /// assert_eq!((near[2], near[3]), (-1 << 24, 1 << 24));
+    /// let far = p.clip(Vec3::from_f32(0.0, 0.0, -3.0).unwrap());
+    /// assert_eq!((far[2], far[3]), (3 << 24, 3 << 24));
+    /// ```
     #[inline]
     pub fn clip(&self, e: Vec3) -> [i64; 4] {
         let b = e.to_bits();

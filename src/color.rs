@@ -19,6 +19,13 @@ use fixed::types::U16F16;
 use crate::vector::FormatError;
 
 /// The largest channel value an [`Rgb`] holds: inputs above clamp to it.
+///
+/// ```
+/// use fixshade::{color::RGB_MAX, Rgb};
+/// assert_eq!(RGB_MAX, 256 << 16);
+/// assert_eq!(Rgb::grey_f32(1.0e6).unwrap().to_bits(), [RGB_MAX; 3]);
+/// assert_eq!(Rgb::from_bits(u32::MAX, 0, 0).to_bits()[0], RGB_MAX);
+/// ```
 pub const RGB_MAX: u32 = 256 << 16;
 
 /// A linear RGB colour or light intensity with `U16F16` channels, each in
@@ -38,8 +45,21 @@ pub struct Rgb {
 
 impl Rgb {
     /// Black (0, 0, 0).
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// assert!(Rgb::BLACK.is_black());
+    /// assert_eq!(Rgb::BLACK, Rgb::default());
+    /// assert_eq!(Rgb::BLACK, Rgb::grey_f32(0.0).unwrap());
+    /// ```
     pub const BLACK: Rgb = Rgb { c: [0; 3] };
     /// White (1, 1, 1).
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb::WHITE.to_bits(), [1 << 16; 3]);
+    /// assert_eq!(Rgb::WHITE, Rgb::from_f32(1.0, 1.0, 1.0).unwrap());
+    /// ```
     pub const WHITE: Rgb = Rgb { c: [1 << 16; 3] };
 
     /// A colour from raw `U16F16` bits, each clamped to [`RGB_MAX`].
@@ -63,6 +83,14 @@ impl Rgb {
     }
 
     /// A colour from fixed-point channels (clamped to 256).
+    ///
+    /// ```
+    /// use fixed::types::U16F16;
+    /// use fixshade::color::{Rgb, RGB_MAX};
+    /// let c = Rgb::new(U16F16::from_num(0.5), U16F16::ONE, U16F16::MAX);
+    /// // U16F16::MAX (just under 65536) is clamped to 256.
+    /// assert_eq!(c.to_bits(), [1 << 15, 1 << 16, RGB_MAX]);
+    /// ```
     pub const fn new(r: U16F16, g: U16F16, b: U16F16) -> Rgb {
         Rgb::from_bits(r.to_bits(), g.to_bits(), b.to_bits())
     }
@@ -70,11 +98,27 @@ impl Rgb {
     /// A colour from floats, rounded to nearest. NaN and ±∞ are errors;
     /// negative values are [`FormatError::OutOfRange`]; values above 256
     /// clamp to 256.
+    ///
+    /// ```
+    /// use fixshade::{vector::FormatError, Rgb};
+    /// // 2/3 · 2^16 = 43690.67 rounds up to 43691.
+    /// assert_eq!(Rgb::from_f32(2.0 / 3.0, 0.25, 0.0).unwrap().to_bits(), [43691, 16384, 0]);
+    /// assert_eq!(Rgb::from_f32(0.0, f32::INFINITY, 0.0), Err(FormatError::NotFinite));
+    /// assert_eq!(Rgb::from_f32(0.0, 0.0, -0.5), Err(FormatError::OutOfRange));
+    /// assert_eq!(Rgb::from_f32(300.0, 0.0, 0.0), Ok(Rgb::from_bits(256 << 16, 0, 0)));
+    /// ```
     pub fn from_f32(r: f32, g: f32, b: f32) -> Result<Rgb, FormatError> {
         Rgb::from_f64([r as f64, g as f64, b as f64])
     }
 
     /// As [`Rgb::from_f32`], from `f64`s.
+    ///
+    /// ```
+    /// use fixshade::{color::RGB_MAX, vector::FormatError, Rgb};
+    /// assert_eq!(Rgb::from_f64([0.25, 2.0, 1e9]).unwrap().to_bits(), [16384, 131072, RGB_MAX]);
+    /// assert_eq!(Rgb::from_f64([0.5, 0.5, 0.5]), Rgb::from_f32(0.5, 0.5, 0.5));
+    /// assert_eq!(Rgb::from_f64([f64::NAN, 0.0, 0.0]), Err(FormatError::NotFinite));
+    /// ```
     pub fn from_f64(c: [f64; 3]) -> Result<Rgb, FormatError> {
         Ok(Rgb {
             c: [chan(c[0])?, chan(c[1])?, chan(c[2])?],
@@ -82,16 +126,36 @@ impl Rgb {
     }
 
     /// The same value in all three channels; see [`Rgb::from_f32`].
+    ///
+    /// ```
+    /// use fixshade::{vector::FormatError, Rgb};
+    /// assert_eq!(Rgb::grey_f32(0.5), Rgb::from_f32(0.5, 0.5, 0.5));
+    /// assert_eq!(Rgb::grey_f32(0.5).unwrap().to_bits(), [1 << 15; 3]);
+    /// assert_eq!(Rgb::grey_f32(-1.0), Err(FormatError::OutOfRange));
+    /// ```
     pub fn grey_f32(v: f32) -> Result<Rgb, FormatError> {
         Rgb::from_f32(v, v, v)
     }
 
     /// The raw `U16F16` bits of the channels.
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb::from_bits(1, 2, 3).to_bits(), [1, 2, 3]);
+    /// assert_eq!(Rgb::grey_f32(1.5).unwrap().to_bits(), [3 << 15; 3]);
+    /// ```
     pub const fn to_bits(self) -> [u32; 3] {
         self.c
     }
 
     /// Whether every channel is 0.
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// assert!(Rgb::BLACK.is_black());
+    /// assert!(!Rgb::from_bits(0, 0, 1).is_black());
+    /// assert!(Rgb::WHITE.scaled(0, 4).is_black());
+    /// ```
     pub const fn is_black(self) -> bool {
         self.c[0] == 0 && self.c[1] == 0 && self.c[2] == 0
     }
@@ -99,6 +163,16 @@ impl Rgb {
     /// The channels scaled by `num / den` (used for the k × k samples of an
     /// area light), rounded to nearest and clamped to [`RGB_MAX`] like every
     /// channel. `den == 0` gives black.
+    ///
+    /// ```
+    /// use fixshade::{color::RGB_MAX, Rgb};
+    /// // A 2 × 2 area light: each sample carries a quarter.
+    /// assert_eq!(Rgb::WHITE.scaled(1, 4).to_bits(), [1 << 14; 3]);
+    /// // 1.5 → 2, 0.5 → 1
+    /// assert_eq!(Rgb::from_bits(3, 1, 0).scaled(1, 2).to_bits(), [2, 1, 0]);
+    /// assert_eq!(Rgb::WHITE.scaled(1000, 1).to_bits(), [RGB_MAX; 3]);
+    /// assert_eq!(Rgb::WHITE.scaled(1, 0), Rgb::BLACK);
+    /// ```
     pub fn scaled(self, num: u32, den: u32) -> Rgb {
         if den == 0 {
             return Rgb::BLACK;
@@ -127,6 +201,14 @@ fn chan(v: f64) -> Result<u32, FormatError> {
 }
 
 /// Raw value of 1.0 in a [`Shade`] channel.
+///
+/// ```
+/// use fixshade::{color::SHADE_ONE, Shade};
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// assert_eq!(SHADE_ONE, 65536);
+/// assert_eq!(Shade::from_bits(u32::MAX, 0, 0).to_bits(), [SHADE_ONE, 0, 0]);
+/// assert_eq!(Shade::from_bits(SHADE_ONE, SHADE_ONE, SHADE_ONE).to_rgb565(), Rgb565::WHITE);
+/// ```
 pub const SHADE_ONE: u32 = 1 << 16;
 
 /// The result of the illumination equation: three `Q.16` channels clamped to
@@ -146,9 +228,21 @@ pub struct Shade {
 
 impl Shade {
     /// Black.
+    ///
+    /// ```
+    /// use fixshade::Shade;
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// assert_eq!(Shade::BLACK, Shade::default());
+    /// assert_eq!(Shade::BLACK.to_rgb565(), Rgb565::BLACK);
+    /// ```
     pub const BLACK: Shade = Shade { c: [0; 3] };
 
     /// A shade from raw `Q.16` bits, each clamped to 1.0.
+    ///
+    /// ```
+    /// use fixshade::Shade;
+    /// assert_eq!(Shade::from_bits(70000, 65536, 1).to_bits(), [65536, 65536, 1]);
+    /// ```
     pub const fn from_bits(r: u32, g: u32, b: u32) -> Shade {
         const fn cl(v: u32) -> u32 {
             if v > SHADE_ONE {
@@ -163,12 +257,27 @@ impl Shade {
     }
 
     /// The raw channels, each in 0 ..= 65536.
+    ///
+    /// ```
+    /// use fixshade::Shade;
+    /// assert_eq!(Shade::from_bits(1, 32768, 65536).to_bits(), [1, 32768, 65536]);
+    /// ```
     pub const fn to_bits(self) -> [u32; 3] {
         self.c
     }
 
     /// Quantises to RGB565 as SPEC.md section 6 says: `round(v · 31)` (or
     /// 63), halves rounded up. `v ≤ 2¹⁶`, so `v · 63 < 2²²`: no overflow.
+    ///
+    /// ```
+    /// use fixshade::Shade;
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// assert_eq!(Shade::from_bits(65536, 65536, 65536).to_rgb565(), Rgb565::WHITE);
+    /// // A quarter: 0.25 · 31 = 7.75 → 8 and 0.25 · 63 = 15.75 → 16.
+    /// assert_eq!(Shade::from_bits(16384, 16384, 16384).to_rgb565(), Rgb565::new(8, 16, 8));
+    /// // Just below half a red step stays 0: 1057/65536 · 31 = 0.49997.
+    /// assert_eq!(Shade::from_bits(1057, 0, 0).to_rgb565(), Rgb565::BLACK);
+    /// ```
     pub const fn to_rgb565(self) -> Rgb565 {
         let r = (self.c[0] * 31 + (1 << 15)) >> 16;
         let g = (self.c[1] * 63 + (1 << 15)) >> 16;
@@ -178,6 +287,15 @@ impl Shade {
 }
 
 /// Packs 5-6-5 channel values into the raw `u16` of an RGB565 pixel.
+///
+/// ```
+/// use fixshade::color::pack565;
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::prelude::*;
+/// assert_eq!(pack565(31, 63, 31), 0xFFFF);
+/// assert_eq!(pack565(31, 0, 0), 0xF800);
+/// assert_eq!(pack565(1, 2, 3), Rgb565::new(1, 2, 3).into_storage());
+/// ```
 #[inline]
 pub const fn pack565(r: u32, g: u32, b: u32) -> u16 {
     ((r << 11) | (g << 5) | b) as u16

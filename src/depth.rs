@@ -7,6 +7,17 @@
 //! and whose test the compiler removes.
 
 /// A depth test: [`NoDepth`] or [`DepthBuffer`].
+///
+/// ```
+/// use fixshade::depth::{DepthBuffer, DepthTest};
+/// let mut storage = [0u16; 4 * 3];
+/// let mut depth = DepthBuffer::new(&mut storage, 4, 3).unwrap();
+/// assert!(DepthBuffer::ENABLED);
+/// depth.row(1, 1, 2).fill(9);
+/// assert_eq!(depth.row(1, 2, 10).len(), 2); // cut at the right edge
+/// assert!(depth.row(3, 0, 1).is_empty()); // below the buffer
+/// assert_eq!(depth.as_slice()[4..8], [0, 9, 9, 0]);
+/// ```
 pub trait DepthTest {
     /// Whether there is a test at all.
     const ENABLED: bool;
@@ -16,6 +27,22 @@ pub trait DepthTest {
 }
 
 /// No depth test: every pixel is drawn, later triangles over earlier ones.
+///
+/// ```
+/// use fixshade::depth::{DepthTest, NoDepth};
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+/// assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
+/// let mut px = [0u16; 4];
+/// let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
+/// let near = SpanDepth { z: 0, dz: 0, inside: true };
+/// let far = SpanDepth { z: 1 << 24, dz: 0, inside: false };
+/// for (c, z) in [(1, near), (2, far)] {
+///     let sh = FlatShader { plain: c, shade: Default::default(), dither: false, x: 0, y: 0 };
+///     emit(&mut FramebufferSink { fb: &mut fb }, &mut NoDepth, 0, 0, 4, z, sh).unwrap();
+/// }
+/// assert_eq!(px, [2; 4]); // the later, farther span is drawn over the nearer
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct NoDepth;
 
@@ -28,6 +55,13 @@ impl DepthTest for NoDepth {
 }
 
 /// Why a depth buffer could not be made.
+///
+/// ```
+/// use fixshade::depth::{DepthBuffer, DepthBufferTooSmall};
+/// let err = DepthBuffer::new(&mut [0u16; 11], 4, 3).unwrap_err();
+/// assert_eq!(err, DepthBufferTooSmall);
+/// assert_eq!(format!("{err}"), "depth buffer shorter than width × height");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct DepthBufferTooSmall;
 
@@ -44,6 +78,7 @@ impl core::fmt::Display for DepthBufferTooSmall {
 /// let mut storage = [0u16; 4 * 3];
 /// let mut depth = DepthBuffer::new(&mut storage, 4, 3).unwrap();
 /// depth.clear();
+/// assert_eq!((depth.width(), depth.height()), (4, 3));
 /// assert!(DepthBuffer::new(&mut [0u16; 5], 4, 3).is_err());
 /// ```
 #[derive(Debug, PartialEq, Eq)]
@@ -55,6 +90,17 @@ pub struct DepthBuffer<'a> {
 
 impl<'a> DepthBuffer<'a> {
     /// Wraps `buf`, which must hold at least `width · height` values.
+    ///
+    /// ```
+    /// use fixshade::depth::DepthBuffer;
+    /// let mut storage = [0u16; 16];
+    /// assert!(DepthBuffer::new(&mut storage[..11], 4, 3).is_err());
+    /// assert!(DepthBuffer::new(&mut storage[..12], 4, 3).is_ok());
+    /// // Longer storage is fine; only the first width · height values are used.
+    /// assert_eq!(DepthBuffer::new(&mut storage, 4, 3).unwrap().as_slice().len(), 12);
+    /// // A product past u32 is still refused, not wrapped.
+    /// assert!(DepthBuffer::new(&mut storage, 1 << 16, 1 << 16).is_err());
+    /// ```
     pub fn new(buf: &'a mut [u16], width: u32, height: u32) -> Result<Self, DepthBufferTooSmall> {
         let need = width as u64 * height as u64;
         if (buf.len() as u64) < need {
@@ -64,6 +110,14 @@ impl<'a> DepthBuffer<'a> {
     }
 
     /// Sets every depth to the far value (65535).
+    ///
+    /// ```
+    /// use fixshade::depth::DepthBuffer;
+    /// let mut storage = [0u16; 4 * 3 + 2];
+    /// DepthBuffer::new(&mut storage, 4, 3).unwrap().clear();
+    /// assert!(storage[..12].iter().all(|&z| z == u16::MAX));
+    /// assert_eq!(storage[12..], [0, 0]); // past width × height: untouched
+    /// ```
     pub fn clear(&mut self) {
         let n = (self.width as usize) * (self.height as usize);
         self.buf[..n].fill(u16::MAX);
@@ -80,6 +134,15 @@ impl<'a> DepthBuffer<'a> {
     }
 
     /// The stored depths, row-major.
+    ///
+    /// ```
+    /// use fixshade::depth::{DepthBuffer, DepthTest};
+    /// let mut storage = [0u16; 3 * 2];
+    /// let mut depth = DepthBuffer::new(&mut storage, 3, 2).unwrap();
+    /// depth.clear();
+    /// depth.row(1, 2, 1)[0] = 5; // (x, y) = (2, 1) is at 1 · 3 + 2
+    /// assert_eq!(depth.as_slice(), &[u16::MAX, u16::MAX, u16::MAX, u16::MAX, u16::MAX, 5]);
+    /// ```
     pub fn as_slice(&self) -> &[u16] {
         &self.buf[..(self.width as usize) * (self.height as usize)]
     }
@@ -126,6 +189,14 @@ pub struct DepthBand<'a> {
 
 impl<'a> DepthBand<'a> {
     /// Wraps `buf` (any length; [`DepthBand::start`] checks it).
+    ///
+    /// ```
+    /// use fixshade::depth::{DepthBand, DepthTest};
+    /// let mut band = DepthBand::new(&mut []);
+    /// assert!(band.row(0, 0, 1).is_empty()); // no band until started
+    /// assert!(band.start(0, 0, 16)); // an empty band fits
+    /// assert!(!band.start(1, 0, 1));
+    /// ```
     pub fn new(buf: &'a mut [u16]) -> Self {
         DepthBand {
             buf,
@@ -138,6 +209,18 @@ impl<'a> DepthBand<'a> {
     /// Makes this the band of rows `y0 .. y0 + rows` of a `width`-wide
     /// viewport and clears it to the far value. `false` (and an empty band)
     /// if the storage is shorter than `width × rows`.
+    ///
+    /// ```
+    /// use fixshade::depth::{DepthBand, DepthTest};
+    /// let mut storage = [0u16; 8];
+    /// let mut band = DepthBand::new(&mut storage);
+    /// assert!(band.start(4, 0, 2));
+    /// band.row(1, 0, 4).fill(3);
+    /// assert!(band.start(4, 2, 2)); // the next band, cleared
+    /// assert_eq!(band.row(3, 0, 4), &[u16::MAX; 4]);
+    /// assert!(!band.start(4, 4, 3));
+    /// assert!(band.row(4, 0, 4).is_empty()); // refused: an empty band
+    /// ```
     pub fn start(&mut self, width: u32, y0: u32, rows: u32) -> bool {
         let need = width as u64 * rows as u64;
         if (self.buf.len() as u64) < need {
@@ -152,6 +235,14 @@ impl<'a> DepthBand<'a> {
     }
 
     /// The storage's length in values.
+    ///
+    /// ```
+    /// use fixshade::depth::DepthBand;
+    /// let mut storage = [0u16; 10];
+    /// let mut band = DepthBand::new(&mut storage);
+    /// assert!(band.start(2, 0, 3));
+    /// assert_eq!(band.capacity(), 10); // the storage's, not the band's 6
+    /// ```
     pub fn capacity(&self) -> usize {
         self.buf.len()
     }

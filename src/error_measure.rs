@@ -15,6 +15,19 @@ use crate::reference::{quantize_rgb565, RefFrame};
 use std::fmt;
 
 /// Result of [`compare`].
+///
+/// ```
+/// use fixshade::error_measure::compare;
+/// use fixshade::reference::RefFrame;
+/// let color = vec![Some([1.0; 3]), Some([0.0; 3]), Some([0.0; 3]), None];
+/// let reference = RefFrame { width: 4, height: 1, color };
+/// // Exact white; black off by 1 LSB in green and blue; reference only; kernel only.
+/// let stats = compare(&[0xFFFF, 0x0021, 0, 0x1234], &[true, true, false, true], &reference);
+/// assert_eq!((stats.covered_both, stats.only_kernel, stats.only_reference), (2, 1, 1));
+/// assert_eq!(stats.max_error, [0, 1, 1]);
+/// assert!((stats.mean_error - 2.0 / 6.0).abs() < 1e-12);
+/// assert_eq!((stats.exact_share, stats.coverage_mismatch_share), (0.5, 0.5));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ErrorStats {
     /// Pixels drawn by both the kernel and the reference.
@@ -142,6 +155,15 @@ pub fn compare(kernel_pixels: &[u16], kernel_covered: &[bool], reference: &RefFr
 }
 
 /// Why [`compare_checked`] refused to compare.
+///
+/// ```
+/// use fixshade::error_measure::{compare_checked, LengthMismatch};
+/// use fixshade::reference::RefFrame;
+/// let reference = RefFrame { width: 2, height: 1, color: vec![None; 2] };
+/// let err = compare_checked(&[0; 2], &[false; 3], &reference).unwrap_err();
+/// assert_eq!(err, LengthMismatch { kernel_pixels: 2, kernel_covered: 3, reference: 2 });
+/// assert!(err.to_string().contains("3 coverage flags"));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LengthMismatch {
     /// `kernel_pixels.len()`.

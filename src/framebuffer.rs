@@ -13,6 +13,13 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
 /// Why a framebuffer could not be made.
+///
+/// ```
+/// use fixshade::framebuffer::{Framebuffer, FramebufferTooSmall};
+/// let err = Framebuffer::new(&mut [0u16; 15], 8, 2).unwrap_err();
+/// assert_eq!(err, FramebufferTooSmall);
+/// assert_eq!(format!("{err}"), "framebuffer shorter than width × height");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FramebufferTooSmall;
 
@@ -41,6 +48,16 @@ pub struct Framebuffer<'a> {
 
 impl<'a> Framebuffer<'a> {
     /// Wraps `buf`, which must hold at least `width · height` pixels.
+    ///
+    /// ```
+    /// use embedded_graphics::prelude::*;
+    /// use fixshade::framebuffer::Framebuffer;
+    /// let mut px = [0u16; 20];
+    /// assert!(Framebuffer::new(&mut px[..15], 8, 2).is_err());
+    /// let fb = Framebuffer::new(&mut px, 8, 2).unwrap(); // longer is fine
+    /// assert_eq!(fb.size(), Size::new(8, 2));
+    /// assert!(Framebuffer::new(&mut px, 1 << 16, 1 << 16).is_err()); // 2³², not 0
+    /// ```
     pub fn new(buf: &'a mut [u16], width: u32, height: u32) -> Result<Self, FramebufferTooSmall> {
         if (buf.len() as u64) < width as u64 * height as u64 {
             return Err(FramebufferTooSmall);
@@ -49,11 +66,31 @@ impl<'a> Framebuffer<'a> {
     }
 
     /// The raw pixels, row-major.
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+    /// use fixshade::framebuffer::Framebuffer;
+    /// let mut px = [0u16; 3 * 2 + 1];
+    /// let mut fb = Framebuffer::new(&mut px, 3, 2).unwrap();
+    /// Pixel(Point::new(2, 1), Rgb565::WHITE).draw(&mut fb).unwrap();
+    /// assert_eq!(fb.as_slice(), &[0, 0, 0, 0, 0, 0xFFFF]); // (2, 1) at 1 · 3 + 2
+    /// ```
     pub fn as_slice(&self) -> &[u16] {
         &self.buf[..(self.width as usize) * (self.height as usize)]
     }
 
     /// The pixel at `(x, y)`, or `None` outside.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb565;
+    /// use fixshade::framebuffer::Framebuffer;
+    /// let mut px = [0u16; 4 * 2];
+    /// px[5] = 0b00001_000010_00011; // raw RGB565 at (1, 1)
+    /// let fb = Framebuffer::new(&mut px, 4, 2).unwrap();
+    /// assert_eq!(fb.pixel(1, 1), Some(Rgb565::new(1, 2, 3)));
+    /// assert_eq!(fb.pixel(4, 0), None);
+    /// assert_eq!(fb.pixel(0, 2), None);
+    /// ```
     pub fn pixel(&self, x: u32, y: u32) -> Option<Rgb565> {
         if x >= self.width || y >= self.height {
             return None;
@@ -63,6 +100,17 @@ impl<'a> Framebuffer<'a> {
     }
 
     /// Row `y` from column `x0`, `n` pixels, if all of it is inside.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use fixshade::framebuffer::Framebuffer;
+    /// let mut px = [0u16; 4 * 2];
+    /// let mut fb = Framebuffer::new(&mut px, 4, 2).unwrap();
+    /// fb.row_mut(1, 2, 2).unwrap().fill(0xFFFF);
+    /// assert_eq!(fb.pixel(3, 1), Some(Rgb565::WHITE));
+    /// assert!(fb.row_mut(1, 2, 3).is_none()); // one pixel past the edge: none of it
+    /// assert!(fb.row_mut(2, 0, 1).is_none());
+    /// ```
     #[inline]
     pub fn row_mut(&mut self, y: u32, x0: u32, n: usize) -> Option<&mut [u16]> {
         // `x0 + n ≤ width` without the sum, which may wrap `usize` (a

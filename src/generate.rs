@@ -20,6 +20,15 @@ use std::f64::consts::PI;
 use std::fmt;
 
 /// Largest segment count accepted by the generators; larger values are clamped.
+///
+/// ```
+/// use fixshade::generate::{sphere, torus, MAX_SEGMENTS};
+/// let s = sphere(MAX_SEGMENTS + 100, 2, 1.0); // lon clamped to MAX_SEGMENTS
+/// assert_eq!(s.positions.len(), 3 * (MAX_SEGMENTS as usize + 1));
+/// assert_eq!(s.indices.len(), MAX_SEGMENTS as usize * 2);
+/// let t = torus(1.0, 0.25, u32::MAX, 3); // no u32 overflow either
+/// assert_eq!(t.indices.len(), 2 * MAX_SEGMENTS as usize * 3);
+/// ```
 pub const MAX_SEGMENTS: u32 = 4096;
 
 /// A UV sphere of the given radius centred on the origin.
@@ -215,6 +224,17 @@ pub struct ObjError {
 }
 
 /// The kinds of [`ObjError`].
+///
+/// ```
+/// use fixshade::generate::{load_obj, ObjErrorKind};
+/// let kind = |text| load_obj(text).unwrap_err().kind;
+/// assert_eq!(kind("v 0 0\n"), ObjErrorKind::MissingCoordinate);
+/// assert_eq!(kind("v 0 0 nan\n"), ObjErrorKind::BadNumber("nan".into()));
+/// assert_eq!(kind("v 0 0 0\nf 1 1\n"), ObjErrorKind::TooFewFaceVertices(2));
+/// assert_eq!(kind("v 0 0 0\nf 1 1 0\n"), ObjErrorKind::ZeroIndex);
+/// let out = ObjErrorKind::IndexOutOfRange { what: "position", index: 4, count: 1 };
+/// assert_eq!(kind("v 0 0 0\nf 1 1 4\n"), out);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ObjErrorKind {
     /// A `v` or `vn` line without three numbers.

@@ -38,6 +38,13 @@ use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{Mat4, Unit3, Vec3};
 
 /// `Q.15` raw value of 1.0, the format of the per-light factors.
+///
+/// ```
+/// use fixshade::illumination::{Gain, FACTOR_ONE};
+/// assert_eq!(FACTOR_ONE, 1 << 15);
+/// // A factor of 1 passes a gain through unchanged (here 3.0, in Q.16).
+/// assert_eq!(Gain::of_product(3 << 16, 1 << 16).apply(FACTOR_ONE), 3 << 16);
+/// ```
 pub const FACTOR_ONE: u32 = 1 << 15;
 
 /// A per-light colour gain (`Id·Kd` or `Is·Ks` of one channel), as a 16-bit
@@ -48,6 +55,15 @@ pub const FACTOR_ONE: u32 = 1 << 15;
 /// keep 16 significant bits; below 2⁻¹⁶ (`sh = 31`, e.g. an area light's
 /// 1/k² share on a dark material) the gain is the exact `Q.32` product,
 /// with fewer bits.
+///
+/// ```
+/// use fixshade::illumination::Gain;
+/// // Id · Kd = 0.001 · 1: the mantissa keeps 16 significant bits.
+/// let g = Gain::of_product(66, 1 << 16);
+/// let (mant, den) = g.parts();
+/// assert!(mant >= 1 << 15);
+/// assert_eq!(mant as u64 * (1 << 32) / den, 66 << 16);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Gain {
     mant: u16,
@@ -57,6 +73,14 @@ pub struct Gain {
 impl Gain {
     /// The gain of two `U16F16` values' product, given as the exact `Q.32`
     /// product (`u64`).
+    ///
+    /// ```
+    /// use fixshade::illumination::Gain;
+    /// assert_eq!(Gain::from_q32(1 << 32).parts(), (1 << 15, 1 << 15)); // 1.0
+    /// assert_eq!(Gain::from_q32(0).parts().0, 0);
+    /// // Above 256 the gain is clamped to 256.
+    /// assert_eq!(Gain::from_q32(u64::MAX), Gain::from_q32(256 << 32));
+    /// ```
     pub const fn from_q32(p: u64) -> Gain {
         let p = if p > (256u64 << 32) { 256u64 << 32 } else { p };
         if p == 0 {
@@ -88,6 +112,14 @@ impl Gain {
     }
 
     /// The gain of `a · b` for two `U16F16` raw values.
+    ///
+    /// ```
+    /// use fixshade::illumination::Gain;
+    /// // 2.0 · 0.25 = 0.5, the same gain as its exact Q.32 product.
+    /// let g = Gain::of_product(2 << 16, 1 << 14);
+    /// assert_eq!(g, Gain::from_q32(1 << 31));
+    /// assert_eq!(g.parts(), (1 << 15, 1 << 16));
+    /// ```
     pub const fn of_product(a: u32, b: u32) -> Gain {
         Gain::from_q32(a as u64 * b as u64)
     }
@@ -97,6 +129,16 @@ impl Gain {
     ///
     /// A factor above 1 (`x > 2¹⁵`, outside the factors' range) is clamped
     /// to 1 first (one `min`), so the result is at most the gain itself.
+    ///
+    /// ```
+    /// use fixshade::color::SHADE_ONE;
+    /// use fixshade::illumination::{Gain, FACTOR_ONE};
+    /// let one = Gain::of_product(1 << 16, 1 << 16);
+    /// assert_eq!(one.apply(FACTOR_ONE / 2), SHADE_ONE / 2);
+    /// assert_eq!(one.apply(u32::MAX), SHADE_ONE); // the factor is clamped to 1 first
+    /// let half = Gain::of_product(1 << 15, 1 << 16);
+    /// assert_eq!(half.apply(1), 1); // 0.5 · 2 Q.16 units, rounded to nearest
+    /// ```
     #[inline(always)]
     pub const fn apply(self, x: u32) -> u32 {
         let x = if x > FACTOR_ONE { FACTOR_ONE } else { x };
@@ -114,12 +156,27 @@ impl Gain {
     /// The gain's value as exact rational parts: `(mant, 2^(sh + 1))`,
     /// value = `mant / 2^(sh + 1)`. The denominator is a `u64` because it
     /// reaches 2³² for gains below 2⁻¹⁶ (`sh = 31`).
+    ///
+    /// ```
+    /// use fixshade::illumination::Gain;
+    /// assert_eq!(Gain::from_q32(3 << 32).parts(), (49152, 1 << 14)); // 3 = 49152 / 2^14
+    /// // 2^-32, the smallest gain: the denominator reaches 2^32.
+    /// assert_eq!(Gain::from_q32(1).parts(), (1, 1 << 32));
+    /// ```
     pub const fn parts(self) -> (u16, u64) {
         (self.mant, 1u64 << (self.sh as u32 + 1))
     }
 }
 
 /// The diffuse and specular gains of one light for one material.
+///
+/// ```
+/// use fixshade::illumination::{Gain, Gains};
+/// use fixshade::Rgb;
+/// let g = Gains::new(Rgb::WHITE, Rgb::WHITE, Rgb::grey_f32(0.5).unwrap(), Rgb::BLACK);
+/// assert_eq!(g.diffuse, [Gain::of_product(1 << 16, 1 << 15); 3]);
+/// assert_eq!(g.specular, [Gain::default(); 3]); // no specular colour
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Gains {
     /// `Id_c · Kd_c` per channel.
@@ -131,6 +188,17 @@ pub struct Gains {
 impl Gains {
     /// The gains of a light with intensities `id`, `is` on a material with
     /// colours `kd`, `ks`.
+    ///
+    /// ```
+    /// use fixshade::illumination::{Gains, FACTOR_ONE};
+    /// use fixshade::Rgb;
+    /// let id = Rgb::from_f32(2.0, 1.0, 0.0).unwrap();
+    /// let kd = Rgb::from_f32(0.25, 0.5, 1.0).unwrap();
+    /// let g = Gains::new(id, Rgb::WHITE, kd, Rgb::grey_f32(0.5).unwrap());
+    /// // Per channel Id·Kd = 0.5, 0.5, 0, and Is·Ks = 0.5, as Q.16 for a factor of 1.
+    /// assert_eq!(g.diffuse.map(|d| d.apply(FACTOR_ONE)), [32768, 32768, 0]);
+    /// assert_eq!(g.specular.map(|s| s.apply(FACTOR_ONE)), [32768; 3]);
+    /// ```
     pub fn new(id: Rgb, is: Rgb, kd: Rgb, ks: Rgb) -> Gains {
         let (id, is, kd, ks) = (id.to_bits(), is.to_bits(), kd.to_bits(), ks.to_bits());
         Gains {
@@ -142,6 +210,23 @@ impl Gains {
 
 /// Where light is evaluated: a surface point and its unit normal (eye
 /// space), the direction to the viewer, and the material's shininess.
+///
+/// ```
+/// use fixshade::illumination::{add_light, Gains, Surface, FACTOR_ONE};
+/// use fixshade::material::BlinnPhong;
+/// use fixshade::{Exponent, Rgb, Unit3, Vec3};
+/// let w = Rgb::WHITE;
+/// let g = Gains::new(w, w, w, w);
+/// let mut s = Surface { position: Vec3::ZERO, normal: Unit3::Z, view: Unit3::Z,
+///                       shininess: Exponent::from_int(32) };
+/// let mut acc = [0; 3];
+/// add_light::<BlinnPhong>(&s, Unit3::Z, FACTOR_ONE, &g, &mut acc);
+/// assert_eq!(acc, [2 << 16; 3]); // diffuse 1 + specular 1
+/// s.view = Unit3::ZERO; // undefined V: no specular
+/// let mut acc = [0; 3];
+/// add_light::<BlinnPhong>(&s, Unit3::Z, FACTOR_ONE, &g, &mut acc);
+/// assert_eq!(acc, [1 << 16; 3]);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Surface {
     /// Eye-space position `P`.
@@ -163,6 +248,20 @@ pub struct Surface {
 /// 2¹⁵).
 ///
 /// This is the body of the sum in SPEC.md 3, shared by every light kind.
+///
+/// ```
+/// use fixshade::illumination::{add_light, Gains, Surface, FACTOR_ONE};
+/// use fixshade::material::NoSpecular;
+/// use fixshade::{Exponent, Rgb, Unit3, Vec3};
+/// let g = Gains::new(Rgb::WHITE, Rgb::BLACK, Rgb::WHITE, Rgb::BLACK);
+/// let s = Surface { position: Vec3::ZERO, normal: Unit3::Z, view: Unit3::ZERO,
+///                   shininess: Exponent::ZERO };
+/// let mut acc = [100; 3];
+/// add_light::<NoSpecular>(&s, Unit3::Z, FACTOR_ONE / 2, &g, &mut acc); // s·f = 0.5
+/// assert_eq!(acc, [100 + (1 << 15); 3]);
+/// add_light::<NoSpecular>(&s, Unit3::Z.neg(), FACTOR_ONE, &g, &mut acc); // from behind
+/// assert_eq!(acc, [100 + (1 << 15); 3]);
+/// ```
 #[inline(always)]
 pub fn add_light<S: Specular>(ctx: &Surface, l: Unit3, sf: u32, g: &Gains, acc: &mut [u32; 3]) {
     add_light_with::<S>(ctx, l, sf, g, acc, |nl| specular_delta::<S>(ctx, l, nl));
@@ -255,6 +354,12 @@ fn specular_delta<S: Specular>(ctx: &Surface, l: Unit3, nl: i32) -> Option<u32> 
 }
 
 /// Where the viewer is: selects how `V` is computed.
+///
+/// ```
+/// use fixshade::illumination::{InfiniteViewer, LocalViewer, Viewer};
+/// assert!(LocalViewer::LOCAL);
+/// assert!(!InfiniteViewer::LOCAL);
+/// ```
 pub trait Viewer: Copy + Default {
     /// `true` for a local viewer (`V = normalise(−P)`), `false` for the
     /// infinite viewer (`V = (0, 0, 1)`).
@@ -262,6 +367,13 @@ pub trait Viewer: Copy + Default {
 }
 
 /// The infinite viewer: `V = (0, 0, 1)` everywhere (cheaper).
+///
+/// ```
+/// use fixshade::illumination::{view_dir, InfiniteViewer};
+/// use fixshade::{Unit3, Vec3};
+/// let p = Vec3::from_f32(5.0, -1.0, -3.0).unwrap();
+/// assert_eq!(view_dir::<InfiniteViewer>(p), Unit3::Z);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct InfiniteViewer;
 impl Viewer for InfiniteViewer {
@@ -269,6 +381,14 @@ impl Viewer for InfiniteViewer {
 }
 
 /// The local viewer: `V = normalise(−P)`, the eye at the eye-space origin.
+///
+/// ```
+/// use fixshade::illumination::{view_dir, LocalViewer};
+/// use fixshade::{Unit3, Vec3};
+/// let p = Vec3::from_f32(0.0, 0.0, -2.0).unwrap();
+/// assert_eq!(view_dir::<LocalViewer>(p), Unit3::Z);
+/// assert_eq!(view_dir::<LocalViewer>(Vec3::ZERO), Unit3::ZERO); // at the eye: undefined
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct LocalViewer;
 impl Viewer for LocalViewer {
@@ -276,6 +396,15 @@ impl Viewer for LocalViewer {
 }
 
 /// `V` at eye-space point `p` for viewer `V` (zero where undefined).
+///
+/// ```
+/// use fixshade::illumination::{view_dir, InfiniteViewer, LocalViewer};
+/// use fixshade::{Unit3, Vec3};
+/// let p = Vec3::from_f32(3.0, 0.0, -4.0).unwrap();
+/// // −P / |P| = (−0.6, 0, 0.8) in I2F14.
+/// assert_eq!(view_dir::<LocalViewer>(p).to_bits(), [-9830, 0, 13107]);
+/// assert_eq!(view_dir::<InfiniteViewer>(p), Unit3::Z);
+/// ```
 #[inline]
 pub fn view_dir<V: Viewer>(p: Vec3) -> Unit3 {
     if V::LOCAL {
@@ -322,6 +451,21 @@ pub struct Lighting<S: Specular, V: Viewer, L: LightSet> {
 impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
     /// Prepares the equation: `view` takes the lights' world-space
     /// positions and directions to eye space.
+    ///
+    /// ```
+    /// use fixshade::illumination::InfiniteViewer;
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::{Lighting, Mat4, Material, Rgb, Unit3, Vec3};
+    /// let m = Material::new();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let none = Rgb::BLACK;
+    /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, none, &sun, &Mat4::IDENTITY);
+    /// assert!(lit.shade(Vec3::ZERO, Unit3::Z).to_bits()[0] > 52000); // Kd = 0.8
+    /// // A view turned half-way round about x puts the light behind the surface.
+    /// let turned = Mat4::rotation(0, core::f32::consts::PI);
+    /// let dark: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, none, &sun, &turned);
+    /// assert_eq!(dark.shade(Vec3::ZERO, Unit3::Z).to_bits(), [0; 3]);
+    /// ```
     pub fn new(material: &Material<S>, global_ambient: Rgb, lights: &L, view: &Mat4) -> Self {
         let (e, a, ka) = (
             material.emission.to_bits(),
@@ -349,6 +493,19 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
 
     /// The colour at eye-space point `p` with unit normal `n` (SPEC.md 3),
     /// clamped to [0, 1]. A zero normal lights nothing but `E + A·Ka`.
+    ///
+    /// ```
+    /// use fixshade::illumination::InfiniteViewer;
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::{Lighting, Mat4, Material, Rgb, Unit3, Vec3};
+    /// let m = Material::new();
+    /// let four = Rgb::grey_f32(4.0).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap().with_diffuse(four);
+    /// let a = Rgb::grey_f32(0.5).unwrap();
+    /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, a, &sun, &Mat4::IDENTITY);
+    /// assert_eq!(lit.shade(Vec3::ZERO, Unit3::Z).to_bits(), [1 << 16; 3]); // 0.1 + 3.2, clamped
+    /// assert_eq!(lit.shade(Vec3::ZERO, Unit3::ZERO), lit.ambient()); // zero normal
+    /// ```
     #[inline]
     pub fn shade(&self, p: Vec3, n: Unit3) -> Shade {
         let mut acc = self.base;
@@ -373,6 +530,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
     }
 
     /// `E + A·Ka` alone, as `Q.16` (what a surface no light reaches shows).
+    ///
+    /// ```
+    /// use fixshade::illumination::InfiniteViewer;
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::{Lighting, Mat4, Material, Rgb};
+    /// let m = Material::new().with_emission(Rgb::grey_f32(0.25).unwrap()); // Ka = 0.2
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let a = Rgb::grey_f32(0.5).unwrap();
+    /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, a, &sun, &Mat4::IDENTITY);
+    /// // E + A·Ka = 0.25 + 0.5 · 0.2 = 0.35, i.e. 22937.6 in Q.16.
+    /// assert!((lit.ambient().to_bits()[0] as i64 - 22938).abs() <= 1);
+    /// ```
     pub fn ambient(&self) -> Shade {
         Shade::from_bits(self.base[0], self.base[1], self.base[2])
     }

@@ -32,6 +32,14 @@ use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{FormatError, Mat4, Unit3, Vec3, COORD_FRAC};
 
 /// Why a light could not be built.
+///
+/// ```
+/// use fixshade::light::{unit_from_f32, LightError, SpotCone};
+/// assert_eq!(unit_from_f32([0.0; 3]), Err(LightError::ZeroDirection));
+/// assert_eq!(unit_from_f32([f32::NAN, 0.0, 1.0]), Err(LightError::NotFinite));
+/// assert_eq!(SpotCone::new([0.0, -1.0, 0.0], 95.0, 1.0), Err(LightError::BadCutoff));
+/// assert_eq!(LightError::BadCutoff.to_string(), "spot cutoff outside [0, 90] degrees");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LightError {
     /// A number was NaN or infinite.
@@ -89,6 +97,12 @@ const WIDE_LIMIT: i64 = 1 << 62;
 
 impl WidePoint {
     /// From raw `I40F24` bits, each clamped to ±2⁶² (±2³⁸ in value).
+    ///
+    /// ```
+    /// use fixshade::light::WidePoint;
+    /// let p = WidePoint::from_bits(i64::MAX, -5, i64::MIN);
+    /// assert_eq!(p.to_bits(), [1 << 62, -5, -(1 << 62)]);
+    /// ```
     pub const fn from_bits(x: i64, y: i64, z: i64) -> Self {
         const fn cl(v: i64) -> i64 {
             if v > WIDE_LIMIT {
@@ -105,11 +119,29 @@ impl WidePoint {
     }
 
     /// From floats; NaN/∞ and magnitudes of 2³⁸ or more are errors.
+    ///
+    /// ```
+    /// use fixshade::light::WidePoint;
+    /// use fixshade::vector::FormatError;
+    /// let p = WidePoint::from_f32([1.5, -0.25, 65536.0]).unwrap();
+    /// assert_eq!(p.to_bits(), [3 << 23, -(1 << 22), 1 << 40]);
+    /// assert_eq!(WidePoint::from_f32([0.0, 0.0, 3.0e11]), Err(FormatError::OutOfRange));
+    /// assert_eq!(WidePoint::from_f32([f32::INFINITY, 0.0, 0.0]), Err(FormatError::NotFinite));
+    /// ```
     pub fn from_f32(v: [f32; 3]) -> Result<Self, FormatError> {
         WidePoint::from_f64(v.map(f64::from))
     }
 
     /// As [`WidePoint::from_f32`], from `f64`s.
+    ///
+    /// ```
+    /// use fixshade::light::WidePoint;
+    /// use fixshade::vector::FormatError;
+    /// let limit = (1u64 << 38) as f64;
+    /// let edge = WidePoint::from_f64([limit - 1.0, 0.0, 0.0]).unwrap();
+    /// assert_eq!(edge.to_bits()[0], (1 << 62) - (1 << 24));
+    /// assert_eq!(WidePoint::from_f64([0.0, -limit, 0.0]), Err(FormatError::OutOfRange));
+    /// ```
     pub fn from_f64(v: [f64; 3]) -> Result<Self, FormatError> {
         let mut c = [0i64; 3];
         for (o, x) in c.iter_mut().zip(v) {
@@ -125,6 +157,16 @@ impl WidePoint {
     }
 
     /// From a [`Vec3`] (always fits).
+    ///
+    /// ```
+    /// use fixshade::light::WidePoint;
+    /// use fixshade::Vec3;
+    /// let p = WidePoint::from_vec3(Vec3::from_f32(1.0, -2.0, 0.5).unwrap());
+    /// assert_eq!(p, WidePoint::from_f32([1.0, -2.0, 0.5]).unwrap());
+    /// // Same 24 fraction bits: the raw value carries over unchanged.
+    /// let min = WidePoint::from_vec3(Vec3::from_bits(i32::MIN, 0, 0));
+    /// assert_eq!(min.to_bits(), [i32::MIN as i64, 0, 0]);
+    /// ```
     pub const fn from_vec3(v: Vec3) -> Self {
         let b = v.to_bits();
         WidePoint {
@@ -178,6 +220,16 @@ pub fn unit_from_f32(v: [f32; 3]) -> Result<Unit3, LightError> {
 }
 
 /// As [`unit_from_f32`], from `f64`s.
+///
+/// ```
+/// use fixshade::light::{unit_from_f64, LightError};
+/// use fixshade::Unit3;
+/// // Any length, however small or large.
+/// assert_eq!(unit_from_f64([1e-300, 0.0, 0.0]), Ok(Unit3::X));
+/// assert_eq!(unit_from_f64([0.0, -1e300, 0.0]), Ok(Unit3::Y.neg()));
+/// assert_eq!(unit_from_f64([0.0; 3]), Err(LightError::ZeroDirection));
+/// assert_eq!(unit_from_f64([0.0, f64::INFINITY, 0.0]), Err(LightError::NotFinite));
+/// ```
 pub fn unit_from_f64(v: [f64; 3]) -> Result<Unit3, LightError> {
     if v.iter().any(|x| !x.is_finite()) {
         return Err(LightError::NotFinite);
@@ -196,6 +248,20 @@ pub fn unit_from_f64(v: [f64; 3]) -> Result<Unit3, LightError> {
 // ---------------------------------------------------------------------------
 
 /// How a point-like light's intensity falls with distance `d`.
+///
+/// ```
+/// use fixshade::light::Falloff;
+/// // Full intensity up to 4 units, none beyond.
+/// #[derive(Clone, Copy, Debug)]
+/// struct Range;
+/// impl Falloff for Range {
+///     type Prepared = ();
+///     fn prepare(&self) {}
+///     fn factor(_: &(), d_q24: u64) -> u32 { if d_q24 <= 4 << 24 { 1 << 15 } else { 0 } }
+/// }
+/// assert_eq!(Range::factor(&Range.prepare(), 3 << 24), 1 << 15);
+/// assert_eq!(Range::factor(&(), 5 << 24), 0);
+/// ```
 pub trait Falloff: Copy + core::fmt::Debug {
     /// Per-frame form of the falloff.
     type Prepared: Copy + core::fmt::Debug;
@@ -207,6 +273,14 @@ pub trait Falloff: Copy + core::fmt::Debug {
 }
 
 /// No attenuation: `f = 1`; the distance is not used.
+///
+/// ```
+/// use fixshade::light::{Falloff, NoAttenuation, PointLight};
+/// let lamp = PointLight::new([0.0, 1.0, 0.0]).unwrap().without_attenuation();
+/// assert_eq!(lamp.attenuation, NoAttenuation);
+/// // f = 1 (2¹⁵ in `Q.15`) at any distance.
+/// assert_eq!(NoAttenuation::factor(&(), u64::MAX), 1 << 15);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct NoAttenuation;
 
@@ -243,16 +317,42 @@ impl Default for Attenuation {
 
 impl Attenuation {
     /// `(1, 0, 0)`: `f = 1`, SCENE_FORMAT.md's default.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, Falloff};
+    /// assert_eq!(Attenuation::default(), Attenuation::NONE);
+    /// assert_eq!(Attenuation::new(1.0, 0.0, 0.0), Ok(Attenuation::NONE));
+    /// let p = Attenuation::NONE.prepare();
+    /// assert_eq!(Attenuation::factor(&p, 1_000_000 << 24), 1 << 15);
+    /// ```
     pub const NONE: Attenuation = Attenuation {
         c: [U32F32::ONE, U32F32::ZERO, U32F32::ZERO],
     };
 
     /// From floats: each in [0, 2³²); NaN/∞ and negatives are errors.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, LightError};
+    /// let a = Attenuation::new(1.0, 0.5, 0.25).unwrap();
+    /// assert_eq!(a.c.map(|c| c.to_bits()), [1 << 32, 1 << 31, 1 << 30]);
+    /// assert_eq!(Attenuation::new(1.0, -0.1, 0.0), Err(LightError::OutOfRange));
+    /// assert_eq!(Attenuation::new(5.0e9, 0.0, 0.0), Err(LightError::OutOfRange));
+    /// assert_eq!(Attenuation::new(1.0, 0.0, f32::NAN), Err(LightError::NotFinite));
+    /// ```
     pub fn new(c0: f32, c1: f32, c2: f32) -> Result<Self, LightError> {
         Attenuation::from_f64([c0 as f64, c1 as f64, c2 as f64])
     }
 
     /// As [`Attenuation::new`], from `f64`s.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, LightError};
+    /// let a = Attenuation::from_f64([1.0, 1e-6, 1e6]).unwrap();
+    /// assert_eq!(a.c[1].to_bits(), 4295); // 10⁻⁶ · 2³², rounded
+    /// assert_eq!(a.c[2].to_num::<f64>(), 1e6);
+    /// // Even a negative that would round to 0 is an error.
+    /// assert_eq!(Attenuation::from_f64([1.0, -1e-12, 0.0]), Err(LightError::OutOfRange));
+    /// ```
     pub fn from_f64(c: [f64; 3]) -> Result<Self, LightError> {
         let [c0, c1, c2] = c;
         let f = |v: f64| -> Result<U32F32, LightError> {
@@ -302,13 +402,43 @@ pub struct MiniFloat {
 
 impl MiniFloat {
     /// The smallest exponent: values below `2^(E_MIN + 31)` flush to zero.
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// // 1 · 2^-frac: 2^(E_MIN + 31) is the smallest value kept, half of it flushes.
+    /// let frac = -MiniFloat::E_MIN - 31;
+    /// assert_ne!(MiniFloat::from_u64(1, frac), MiniFloat::ZERO);
+    /// assert_eq!(MiniFloat::from_u64(1, frac + 1), MiniFloat::ZERO);
+    /// ```
     pub const E_MIN: i32 = -(1 << 29);
     /// The largest exponent: values of `2^(E_MAX + 32)` or more saturate
     /// to [`MiniFloat::MAX`].
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// // 1 · 2^-frac: 2^(E_MAX + 31) is kept, 2^(E_MAX + 32) saturates.
+    /// assert_ne!(MiniFloat::from_u64(1, -MiniFloat::E_MAX - 31), MiniFloat::MAX);
+    /// assert_eq!(MiniFloat::from_u64(1, -MiniFloat::E_MAX - 32), MiniFloat::MAX);
+    /// ```
     pub const E_MAX: i32 = 1 << 29;
     /// Zero.
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// assert_eq!(MiniFloat::from_u64(0, 7), MiniFloat::ZERO);
+    /// assert_eq!(MiniFloat::from_u64(3, 0).mul(MiniFloat::ZERO), MiniFloat::ZERO);
+    /// assert_eq!(MiniFloat::ZERO.to_q32_saturating(), 0);
+    /// ```
     pub const ZERO: MiniFloat = MiniFloat { m: 0, e: 0 };
     /// The largest value, `(2³² − 1) · 2^E_MAX`.
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// let one = MiniFloat::from_u64(1, 0);
+    /// assert_eq!(MiniFloat::MAX.mul(one), MiniFloat::MAX);
+    /// assert_eq!(MiniFloat::MAX.mul(MiniFloat::MAX), MiniFloat::MAX);
+    /// assert_eq!(MiniFloat::MAX.to_q32_saturating(), u64::MAX);
+    /// ```
     pub const MAX: MiniFloat = MiniFloat {
         m: u32::MAX,
         e: MiniFloat::E_MAX,
@@ -331,6 +461,15 @@ impl MiniFloat {
     /// `v · 2^-frac`, truncated to 32 significant bits; saturated or
     /// flushed to zero where the exponent leaves [`MiniFloat::E_MIN`,
     /// `MiniFloat::E_MAX`] (any `frac` is accepted).
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// assert_eq!(MiniFloat::from_u64(5, 32).to_q32_saturating(), 5); // 5 · 2⁻³²
+    /// // Only the top 32 significant bits of `v` are kept (truncated).
+    /// assert_eq!(MiniFloat::from_u64(u64::MAX, 32).to_q32_saturating(), u64::MAX << 32);
+    /// // Any `frac`: far out of range saturates (or flushes to zero).
+    /// assert_eq!(MiniFloat::from_u64(7, i32::MIN), MiniFloat::MAX);
+    /// ```
     pub const fn from_u64(v: u64, frac: i32) -> MiniFloat {
         let (m, lz) = MiniFloat::normalise(v);
         if m == 0 {
@@ -370,6 +509,16 @@ impl MiniFloat {
     /// The product, truncated to 32 significant bits (one 32 × 32 → 64
     /// multiply); saturated or flushed to zero where the exponent leaves
     /// [`MiniFloat::E_MIN`, `MiniFloat::E_MAX`].
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// let (a, b) = (MiniFloat::from_u64(3, 1), MiniFloat::from_u64(5, 1)); // 1.5, 2.5
+    /// assert_eq!(a.mul(b).to_q32_saturating(), 15 << 30); // 3.75
+    /// // A product below 2^(E_MIN + 31) flushes to zero.
+    /// let small = MiniFloat::from_u64(1, 1 << 28); // 2^-(2²⁸)
+    /// assert_ne!(small, MiniFloat::ZERO);
+    /// assert_eq!(small.mul(small), MiniFloat::ZERO);
+    /// ```
     #[inline]
     pub const fn mul(self, o: MiniFloat) -> MiniFloat {
         let (m, e) = self.mul_parts(o);
@@ -401,6 +550,14 @@ impl MiniFloat {
     }
 
     /// The value in `Q.32`, saturating at `u64::MAX`.
+    ///
+    /// ```
+    /// use fixshade::light::MiniFloat;
+    /// assert_eq!(MiniFloat::from_u64(1, 0).to_q32_saturating(), 1 << 32);
+    /// assert_eq!(MiniFloat::from_u64(1, -31).to_q32_saturating(), 1 << 63); // 2³¹
+    /// assert_eq!(MiniFloat::from_u64(1, -32).to_q32_saturating(), u64::MAX); // 2³² saturates
+    /// assert_eq!(MiniFloat::from_u64(1, 33).to_q32_saturating(), 0); // 2⁻³³ truncates to 0
+    /// ```
     #[inline]
     pub const fn to_q32_saturating(self) -> u64 {
         if self.m == 0 {
@@ -421,6 +578,17 @@ impl MiniFloat {
 }
 
 /// [`Attenuation`] prepared: `c0` in `Q.32`, `c1` and `c2` as floats.
+///
+/// ```
+/// use fixshade::light::{Attenuation, Falloff};
+/// // 1 / (1 + d²) is 0.2 at d = 2 (`Q.24`); the factor is `Q.15`.
+/// let p = Attenuation::new(1.0, 0.0, 1.0).unwrap().prepare();
+/// assert_eq!(Attenuation::factor(&p, 2 << 24), 6554);
+/// assert_eq!(Attenuation::factor(&p, 1000 << 24), 0); // 10⁻⁶: below 2⁻¹⁶
+/// // min(1, ·): 1 / (0.5 + 0.25²) would exceed 1.
+/// let near = Attenuation::new(0.5, 0.0, 1.0).unwrap().prepare();
+/// assert_eq!(Attenuation::factor(&near, 1 << 22), 1 << 15);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedAttenuation {
     c0: u64,
@@ -468,6 +636,21 @@ impl Falloff for Attenuation {
 
 /// A light prepared for a frame, in eye space, with its gains for the
 /// frame's material.
+///
+/// ```
+/// use fixshade::light::{DirectionalLight, LightSet, PreparedLights};
+/// use fixshade::{illumination::Surface, material::NoSpecular, Exponent, Mat4, Rgb, Unit3, Vec3};
+/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// let prepared = sun.prepare(&Mat4::IDENTITY, Rgb::WHITE, Rgb::BLACK);
+/// let (normal, view, shininess) = (Unit3::Z, Unit3::Z, Exponent::ZERO);
+/// let ctx = Surface { position: Vec3::ZERO, normal, view, shininess };
+/// let mut acc = [0; 3];
+/// prepared.shade::<NoSpecular>(&ctx, &mut acc);
+/// assert_eq!(acc, [1 << 16; 3]); // N·L = 1, Id·Kd = 1
+/// let mut full = [u32::MAX - 1; 3];
+/// prepared.shade::<NoSpecular>(&ctx, &mut full);
+/// assert_eq!(full, [u32::MAX; 3]); // saturating
+/// ```
 pub trait PreparedLights: Clone + core::fmt::Debug {
     /// Adds this light's (or these lights') contribution at `ctx` to `acc`
     /// (`Q.16` per channel, saturating).
@@ -475,6 +658,20 @@ pub trait PreparedLights: Clone + core::fmt::Debug {
 }
 
 /// Any number of lights: one light, a tuple, an array, a `heapless::Vec`.
+///
+/// ```
+/// use fixshade::light::{DirectionalLight, LightSet};
+/// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// fn lit<L: LightSet>(lights: &L) -> [u32; 3] {
+///     let m = Material::new().with_diffuse(Rgb::WHITE);
+///     let l = Lighting::<_, InfiniteViewer, _>::new(&m, Rgb::BLACK, lights, &Mat4::IDENTITY);
+///     l.shade(Vec3::ZERO, Unit3::Z).to_bits()
+/// }
+/// let quarter = Rgb::grey_f32(0.25).unwrap();
+/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap().with_diffuse(quarter);
+/// assert_eq!(lit(&(sun, [sun; 2])), lit(&sun).map(|c| 3 * c)); // a tuple holding an array
+/// assert_eq!(lit(&()), [0; 3]);
+/// ```
 pub trait LightSet {
     /// The lights in eye space with their gains.
     type Prepared: PreparedLights;
@@ -510,10 +707,27 @@ pub struct DirectionalLight {
 
 impl DirectionalLight {
     /// A white light shining from `towards_light` (any length but zero).
+    ///
+    /// ```
+    /// use fixshade::light::{DirectionalLight, LightError};
+    /// use fixshade::{Rgb, Unit3};
+    /// let sun = DirectionalLight::new([0.0, 0.0, 5.0]).unwrap();
+    /// assert_eq!(sun.direction, Unit3::Z); // normalised
+    /// assert_eq!((sun.diffuse, sun.specular), (Rgb::WHITE, Rgb::WHITE));
+    /// assert_eq!(DirectionalLight::new([0.0; 3]), Err(LightError::ZeroDirection));
+    /// ```
     pub fn new(towards_light: [f32; 3]) -> Result<Self, LightError> {
         Ok(DirectionalLight::from_unit(unit_from_f32(towards_light)?))
     }
     /// A white light from a unit direction.
+    ///
+    /// ```
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::{Rgb, Unit3};
+    /// const TOP: DirectionalLight = DirectionalLight::from_unit(Unit3::Y);
+    /// assert_eq!((TOP.direction, TOP.diffuse), (Unit3::Y, Rgb::WHITE));
+    /// assert_eq!(DirectionalLight::new([0.0, 2.0, 0.0]), Ok(TOP));
+    /// ```
     pub const fn from_unit(direction: Unit3) -> Self {
         DirectionalLight {
             direction,
@@ -522,11 +736,27 @@ impl DirectionalLight {
         }
     }
     /// Sets the diffuse intensity.
+    ///
+    /// ```
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::Rgb;
+    /// let red = Rgb::from_f32(1.0, 0.0, 0.0).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 1.0, 0.0]).unwrap().with_diffuse(red);
+    /// assert_eq!((sun.diffuse, sun.specular), (red, Rgb::WHITE));
+    /// ```
     pub const fn with_diffuse(mut self, c: Rgb) -> Self {
         self.diffuse = c;
         self
     }
     /// Sets the specular intensity.
+    ///
+    /// ```
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::{Rgb, Unit3};
+    /// const MATT_SUN: DirectionalLight =
+    ///     DirectionalLight::from_unit(Unit3::Z).with_specular(Rgb::BLACK);
+    /// assert_eq!((MATT_SUN.diffuse, MATT_SUN.specular), (Rgb::WHITE, Rgb::BLACK));
+    /// ```
     pub const fn with_specular(mut self, c: Rgb) -> Self {
         self.specular = c;
         self
@@ -534,6 +764,18 @@ impl DirectionalLight {
 }
 
 /// [`DirectionalLight`] prepared.
+///
+/// ```
+/// use fixshade::light::DirectionalLight;
+/// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// let view = Mat4::rotation(1, core::f32::consts::FRAC_PI_2); // +x (world) → −z (eye)
+/// let sun = DirectionalLight::new([1.0, 0.0, 0.0]).unwrap();
+/// let m = Material::new().with_diffuse(Rgb::WHITE);
+/// // `Lighting::new` prepares the sun: a `PreparedDirectional`, in eye space.
+/// let l: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, Rgb::BLACK, &sun, &view);
+/// assert!(l.shade(Vec3::ZERO, Unit3::Z.neg()).to_bits()[0] > 65_400); // facing it: ≈ 1
+/// assert_eq!(l.shade(Vec3::ZERO, Unit3::Z).to_bits(), [0; 3]); // facing away
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedDirectional {
     l: Unit3,
@@ -593,6 +835,15 @@ pub struct PointLight<A: Falloff = Attenuation> {
 
 impl PointLight<Attenuation> {
     /// A white light at `position` with attenuation `(1, 0, 0)`.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, LightError, PointLight, WidePoint};
+    /// let lamp = PointLight::new([0.0, 2.0, 1.0]).unwrap();
+    /// assert_eq!(lamp.position, WidePoint::from_f32([0.0, 2.0, 1.0]).unwrap());
+    /// assert_eq!(lamp.attenuation, Attenuation::NONE);
+    /// assert_eq!(PointLight::new([0.0, 3.0e11, 0.0]), Err(LightError::OutOfRange));
+    /// assert_eq!(PointLight::new([f32::NAN, 0.0, 0.0]), Err(LightError::NotFinite));
+    /// ```
     pub fn new(position: [f32; 3]) -> Result<Self, LightError> {
         Ok(PointLight {
             position: WidePoint::from_f32(position)?,
@@ -605,16 +856,45 @@ impl PointLight<Attenuation> {
 
 impl<A: Falloff> PointLight<A> {
     /// Sets the diffuse intensity.
+    ///
+    /// ```
+    /// use fixshade::light::PointLight;
+    /// use fixshade::Rgb;
+    /// let warm = Rgb::from_f32(1.0, 0.8, 0.6).unwrap();
+    /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap().without_attenuation();
+    /// let lamp = lamp.with_diffuse(warm); // any falloff
+    /// assert_eq!((lamp.diffuse, lamp.specular), (warm, Rgb::WHITE));
+    /// ```
     pub const fn with_diffuse(mut self, c: Rgb) -> Self {
         self.diffuse = c;
         self
     }
     /// Sets the specular intensity.
+    ///
+    /// ```
+    /// use fixshade::light::PointLight;
+    /// use fixshade::Rgb;
+    /// let half = Rgb::grey_f32(0.5).unwrap();
+    /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap().with_specular(half);
+    /// assert_eq!(lamp.specular.to_bits(), [1 << 15; 3]);
+    /// assert_eq!(lamp.diffuse, Rgb::WHITE);
+    /// ```
     pub const fn with_specular(mut self, c: Rgb) -> Self {
         self.specular = c;
         self
     }
     /// Sets an attenuation.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, PointLight};
+    /// use fixshade::Rgb;
+    /// let a = Attenuation::new(1.0, 0.1, 0.01).unwrap();
+    /// let cheap = PointLight::new([0.0, 2.0, 0.0]).unwrap().with_diffuse(Rgb::BLACK);
+    /// let cheap = cheap.without_attenuation();
+    /// let lamp: PointLight<Attenuation> = cheap.with_attenuation(a);
+    /// assert_eq!(lamp.attenuation, a);
+    /// assert_eq!((lamp.position, lamp.diffuse), (cheap.position, Rgb::BLACK));
+    /// ```
     pub fn with_attenuation(self, a: Attenuation) -> PointLight<Attenuation> {
         PointLight {
             position: self.position,
@@ -624,6 +904,17 @@ impl<A: Falloff> PointLight<A> {
         }
     }
     /// Removes attenuation from the type: `f = 1`, no attenuation code.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, NoAttenuation, PointLight};
+    /// use fixshade::Rgb;
+    /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap()
+    ///     .with_diffuse(Rgb::grey_f32(0.5).unwrap())
+    ///     .with_attenuation(Attenuation::new(1.0, 0.0, 1.0).unwrap());
+    /// let cheap: PointLight<NoAttenuation> = lamp.without_attenuation();
+    /// assert_eq!(cheap.attenuation, NoAttenuation); // the constants are dropped
+    /// assert_eq!((cheap.position, cheap.diffuse), (lamp.position, lamp.diffuse));
+    /// ```
     pub fn without_attenuation(self) -> PointLight<NoAttenuation> {
         PointLight {
             position: self.position,
@@ -635,6 +926,15 @@ impl<A: Falloff> PointLight<A> {
 }
 
 /// A spot's cone: `s = 0` outside the cutoff angle, `cos^p γ` inside.
+///
+/// ```
+/// use fixshade::light::SpotCone;
+/// use fixshade::{Exponent, Unit3};
+/// let cone = SpotCone::new([0.0, -2.0, 0.0], 60.0, 8.0).unwrap();
+/// assert_eq!(cone.axis, Unit3::Y.neg());
+/// assert_eq!(cone.delta_cutoff, 1 << 27); // 1 − cos 60° = 0.5 in `Q.28`
+/// assert_eq!(cone.exponent, Exponent::from_int(8));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct SpotCone {
     /// Unit axis (the direction the spot shines), world space.
@@ -648,11 +948,31 @@ pub struct SpotCone {
 impl SpotCone {
     /// A cone from an axis, a cutoff in degrees ([0, 90]) and an exponent
     /// ([0, 4096]).
+    ///
+    /// ```
+    /// use fixshade::light::{LightError, SpotCone};
+    /// let down = [0.0, -1.0, 0.0];
+    /// assert_eq!(SpotCone::new(down, 90.0, 0.0).unwrap().delta_cutoff, 1 << 28); // cos 90° = 0
+    /// assert_eq!(SpotCone::new(down, 90.5, 1.0), Err(LightError::BadCutoff));
+    /// assert_eq!(SpotCone::new(down, 30.0, 4097.0), Err(LightError::BadExponent));
+    /// assert_eq!(SpotCone::new(down, 30.0, -1.0), Err(LightError::BadExponent));
+    /// assert_eq!(SpotCone::new([0.0; 3], 30.0, 1.0), Err(LightError::ZeroDirection));
+    /// ```
     pub fn new(axis: [f32; 3], cutoff_deg: f32, exponent: f32) -> Result<Self, LightError> {
         SpotCone::from_f64(axis.map(f64::from), cutoff_deg as f64, exponent as f64)
     }
 
     /// As [`SpotCone::new`], from `f64`s.
+    ///
+    /// ```
+    /// use fixshade::light::{LightError, SpotCone};
+    /// use fixshade::Exponent;
+    /// let pencil = SpotCone::from_f64([0.0, 0.0, -1.0], 0.0, 0.5).unwrap();
+    /// assert_eq!(pencil.delta_cutoff, 0); // cutoff 0°: the axis alone
+    /// assert_eq!(pencil.exponent, Exponent::from_bits(128)); // 0.5 in `Q.8`
+    /// let bad = SpotCone::from_f64([0.0, 0.0, -1.0], f64::INFINITY, 1.0);
+    /// assert_eq!(bad, Err(LightError::NotFinite));
+    /// ```
     pub fn from_f64(axis: [f64; 3], cutoff_deg: f64, exponent: f64) -> Result<Self, LightError> {
         if !cutoff_deg.is_finite() || !exponent.is_finite() {
             return Err(LightError::NotFinite);
@@ -699,6 +1019,15 @@ pub struct SpotLight<A: Falloff = Attenuation> {
 
 impl SpotLight<Attenuation> {
     /// A white spot at `position` shining along `axis`, attenuation `(1, 0, 0)`.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, LightError, SpotCone, SpotLight};
+    /// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
+    /// assert_eq!(spot.cone, SpotCone::new([0.0, -1.0, 0.0], 30.0, 8.0).unwrap());
+    /// assert_eq!(spot.light.attenuation, Attenuation::NONE);
+    /// let far = SpotLight::new([3.0e11, 0.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0);
+    /// assert_eq!(far, Err(LightError::OutOfRange));
+    /// ```
     pub fn new(
         position: [f32; 3],
         axis: [f32; 3],
@@ -714,16 +1043,43 @@ impl SpotLight<Attenuation> {
 
 impl<A: Falloff> SpotLight<A> {
     /// Sets the diffuse intensity.
+    ///
+    /// ```
+    /// use fixshade::light::SpotLight;
+    /// use fixshade::Rgb;
+    /// let blue = Rgb::from_f32(0.2, 0.4, 1.0).unwrap();
+    /// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
+    /// let spot = spot.with_diffuse(blue);
+    /// assert_eq!((spot.light.diffuse, spot.light.specular), (blue, Rgb::WHITE));
+    /// ```
     pub const fn with_diffuse(mut self, c: Rgb) -> Self {
         self.light.diffuse = c;
         self
     }
     /// Sets the specular intensity.
+    ///
+    /// ```
+    /// use fixshade::light::SpotLight;
+    /// use fixshade::Rgb;
+    /// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
+    /// let matt = spot.with_specular(Rgb::BLACK);
+    /// assert_eq!((matt.light.diffuse, matt.light.specular), (Rgb::WHITE, Rgb::BLACK));
+    /// assert_eq!(matt.cone, spot.cone);
+    /// ```
     pub const fn with_specular(mut self, c: Rgb) -> Self {
         self.light.specular = c;
         self
     }
     /// Sets an attenuation.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, SpotLight};
+    /// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
+    /// let a = Attenuation::new(1.0, 0.0, 0.1).unwrap();
+    /// let dim = spot.with_attenuation(a);
+    /// assert_eq!(dim.light.attenuation, a);
+    /// assert_eq!((dim.light.position, dim.cone), (spot.light.position, spot.cone));
+    /// ```
     pub fn with_attenuation(self, a: Attenuation) -> SpotLight<Attenuation> {
         SpotLight {
             light: self.light.with_attenuation(a),
@@ -734,6 +1090,18 @@ impl<A: Falloff> SpotLight<A> {
 
 /// A point or spot light prepared: eye-space position, gains, falloff, and
 /// the cone in eye space for a spot.
+///
+/// ```
+/// use fixshade::light::SpotLight;
+/// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// let spot = SpotLight::new([0.0, 0.0, 2.0], [0.0, 0.0, -1.0], 20.0, 1.0).unwrap();
+/// let m = Material::new().with_diffuse(Rgb::WHITE);
+/// // `Lighting::new` prepares the spot: a `PreparedPoint<Attenuation, true>`.
+/// let l: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, Rgb::BLACK, &spot, &Mat4::IDENTITY);
+/// let lit = |x| l.shade(Vec3::from_f32(x, 0.0, 0.0).unwrap(), Unit3::Z).to_bits()[0];
+/// assert_eq!(lit(0.0), 1 << 16); // on the axis, 2 units below the spot
+/// assert_eq!(lit(1.5), 0); // 37° off the axis: outside the 20° cone
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedPoint<A: Falloff, const SPOT: bool> {
     pos: [i64; 3],
@@ -865,9 +1233,26 @@ pub struct AreaLight<A: Falloff = Attenuation> {
 
 impl AreaLight<Attenuation> {
     /// The largest k: 4096 samples.
+    ///
+    /// ```
+    /// use fixshade::light::{AreaLight, LightError};
+    /// let (c, u, v) = ([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
+    /// assert!(AreaLight::new(c, u, v, AreaLight::MAX_K).is_ok());
+    /// assert_eq!(AreaLight::new(c, u, v, AreaLight::MAX_K + 1), Err(LightError::BadSamples));
+    /// ```
     pub const MAX_K: u8 = 64;
 
     /// A white area light, attenuation `(1, 0, 0)`.
+    ///
+    /// ```
+    /// use fixshade::light::{AreaLight, LightError, WidePoint};
+    /// use fixshade::Rgb;
+    /// let panel = AreaLight::new([0.0, 3.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 1.0], 4).unwrap();
+    /// assert_eq!(panel.edge_u, WidePoint::from_f32([2.0, 0.0, 0.0]).unwrap());
+    /// assert_eq!((panel.samples_k, panel.diffuse), (4, Rgb::WHITE));
+    /// let far = AreaLight::new([0.0, 3.0e11, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 4);
+    /// assert_eq!(far, Err(LightError::OutOfRange));
+    /// ```
     pub fn new(
         center: [f32; 3],
         edge_u: [f32; 3],
@@ -891,16 +1276,44 @@ impl AreaLight<Attenuation> {
 
 impl<A: Falloff> AreaLight<A> {
     /// Sets the diffuse intensity.
+    ///
+    /// ```
+    /// use fixshade::light::AreaLight;
+    /// use fixshade::Rgb;
+    /// let panel = AreaLight::new([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 2).unwrap();
+    /// // The whole light's intensity: each of the k² samples carries 1/k² of it.
+    /// let dim = panel.with_diffuse(Rgb::grey_f32(0.5).unwrap());
+    /// assert_eq!(dim.diffuse.to_bits(), [1 << 15; 3]);
+    /// assert_eq!(dim.specular, Rgb::WHITE);
+    /// ```
     pub const fn with_diffuse(mut self, c: Rgb) -> Self {
         self.diffuse = c;
         self
     }
     /// Sets the specular intensity.
+    ///
+    /// ```
+    /// use fixshade::light::AreaLight;
+    /// use fixshade::Rgb;
+    /// let panel = AreaLight::new([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 2).unwrap();
+    /// let matt = panel.with_specular(Rgb::BLACK);
+    /// assert!(matt.specular.is_black());
+    /// assert_eq!((matt.diffuse, matt.samples_k), (Rgb::WHITE, 2));
+    /// ```
     pub const fn with_specular(mut self, c: Rgb) -> Self {
         self.specular = c;
         self
     }
     /// Sets the attenuation.
+    ///
+    /// ```
+    /// use fixshade::light::{AreaLight, Attenuation};
+    /// let panel = AreaLight::new([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 3).unwrap();
+    /// let a = Attenuation::new(1.0, 0.5, 0.0).unwrap();
+    /// let dim = panel.with_attenuation(a);
+    /// assert_eq!(dim.attenuation, a);
+    /// assert_eq!((dim.center, dim.edge_v, dim.samples_k), (panel.center, panel.edge_v, 3));
+    /// ```
     pub fn with_attenuation(self, a: Attenuation) -> AreaLight<Attenuation> {
         AreaLight {
             center: self.center,
@@ -916,6 +1329,20 @@ impl<A: Falloff> AreaLight<A> {
 
 /// [`AreaLight`] prepared: the first sample and the steps between samples,
 /// in eye space.
+///
+/// ```
+/// use fixshade::light::{AreaLight, LightSet, PointLight};
+/// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// fn lit<L: LightSet>(lights: &L) -> u32 {
+///     let m = Material::new().with_diffuse(Rgb::WHITE);
+///     let l = Lighting::<_, InfiniteViewer, _>::new(&m, Rgb::BLACK, lights, &Mat4::IDENTITY);
+///     l.shade(Vec3::ZERO, Unit3::Z).to_bits()[0]
+/// }
+/// // 4 × 4 samples, all at the centre (zero edges), 1/16 each: as one point light.
+/// let area = AreaLight::new([0.0, 0.0, 2.0], [0.0; 3], [0.0; 3], 4).unwrap();
+/// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap();
+/// assert!(lit(&area).abs_diff(lit(&lamp)) <= 16);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedArea<A: Falloff> {
     first: [i64; 3],
@@ -1004,6 +1431,20 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
 
 /// A light whose kind is chosen at run time (scene files): pays for every
 /// kind's code. Prefer the concrete types in firmware.
+///
+/// ```
+/// use fixshade::light::{AnyLight, DirectionalLight, LightSet, PointLight};
+/// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
+/// fn lit<L: LightSet>(lights: &L) -> [u32; 3] {
+///     let m = Material::new();
+///     let l = Lighting::<_, InfiniteViewer, _>::new(&m, Rgb::BLACK, lights, &Mat4::IDENTITY);
+///     l.shade(Vec3::ZERO, Unit3::Z).to_bits()
+/// }
+/// let sun = DirectionalLight::new([0.0, 1.0, 1.0]).unwrap();
+/// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap().with_diffuse(Rgb::grey_f32(0.5).unwrap());
+/// let any = [AnyLight::Directional(sun), AnyLight::Point(lamp)];
+/// assert_eq!(lit(&any), lit(&(sun, lamp))); // the same colour as the concrete types
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum AnyLight {
     /// A directional light.
@@ -1017,6 +1458,15 @@ pub enum AnyLight {
 }
 
 /// [`AnyLight`] prepared.
+///
+/// ```
+/// use fixshade::light::{AnyLight, LightSet, PointLight, PreparedAny};
+/// use fixshade::{Mat4, Rgb};
+/// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap();
+/// let view = Mat4::translation(fixshade::Vec3::from_f32(0.0, 0.0, -5.0).unwrap());
+/// let any = AnyLight::Point(lamp).prepare(&view, Rgb::WHITE, Rgb::BLACK);
+/// assert_eq!(any, PreparedAny::Point(lamp.prepare(&view, Rgb::WHITE, Rgb::BLACK)));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PreparedAny {
     /// A directional light.

@@ -15,6 +15,16 @@ use crate::specular_table::Exponent;
 /// Implemented by [`NoSpecular`], [`BlinnPhong`] and [`Phong`]; the
 /// illumination code reads only these items, so the choice costs nothing at
 /// run time.
+///
+/// ```
+/// use fixshade::material::{BlinnPhong, NoSpecular, Phong, Specular};
+/// use fixshade::{Exponent, Rgb};
+/// assert!(BlinnPhong::ENABLED && BlinnPhong::BLINN);
+/// assert!(Phong::ENABLED && !Phong::BLINN);
+/// let p = Phong { color: Rgb::WHITE, shininess: Exponent::from_int(8) };
+/// assert_eq!((p.color(), p.shininess()), (Rgb::WHITE, Exponent::from_int(8)));
+/// assert_eq!((NoSpecular.color(), NoSpecular.shininess()), (Rgb::BLACK, Exponent::ZERO));
+/// ```
 pub trait Specular: Copy {
     /// Whether the term exists at all (false only for [`NoSpecular`]).
     const ENABLED: bool;
@@ -139,6 +149,15 @@ impl Default for Material<NoSpecular> {
 
 impl Material<NoSpecular> {
     /// SCENE_FORMAT.md's default material, without specular.
+    ///
+    /// ```
+    /// use fixshade::{Material, Rgb};
+    /// let m = Material::new();
+    /// assert_eq!(m.emission, Rgb::BLACK);
+    /// assert_eq!(m.ambient, Rgb::grey_f32(0.2).unwrap());
+    /// assert_eq!(m.diffuse, Rgb::grey_f32(0.8).unwrap());
+    /// assert_eq!(m, Material::default());
+    /// ```
     pub const fn new() -> Self {
         Material {
             emission: Rgb::BLACK,
@@ -151,21 +170,53 @@ impl Material<NoSpecular> {
 
 impl<S: Specular> Material<S> {
     /// Sets the emission.
+    ///
+    /// ```
+    /// use fixshade::{Material, Rgb};
+    /// const GLOW: Material = Material::new().with_emission(Rgb::WHITE);
+    /// assert_eq!(GLOW.emission, Rgb::WHITE);
+    /// assert_eq!(GLOW.diffuse, Material::new().diffuse); // the rest is unchanged
+    /// ```
     pub const fn with_emission(mut self, c: Rgb) -> Self {
         self.emission = c;
         self
     }
     /// Sets the ambient colour.
+    ///
+    /// ```
+    /// use fixshade::{Material, Rgb};
+    /// let m = Material::new().with_ambient(Rgb::BLACK);
+    /// assert!(m.ambient.is_black());
+    /// assert_eq!((m.emission, m.diffuse), (Material::new().emission, Material::new().diffuse));
+    /// ```
     pub const fn with_ambient(mut self, c: Rgb) -> Self {
         self.ambient = c;
         self
     }
     /// Sets the diffuse colour.
+    ///
+    /// ```
+    /// use fixshade::{Material, Rgb};
+    /// let red = Rgb::from_f32(1.0, 0.0, 0.0).unwrap();
+    /// let m = Material::new().with_diffuse(red);
+    /// assert_eq!(m.diffuse, red);
+    /// assert_eq!(m.ambient, Material::new().ambient);
+    /// ```
     pub const fn with_diffuse(mut self, c: Rgb) -> Self {
         self.diffuse = c;
         self
     }
     /// Replaces the specular term (and so the material's type).
+    ///
+    /// ```
+    /// use fixshade::material::{NoSpecular, Phong};
+    /// use fixshade::{Exponent, Material, Rgb};
+    /// let base = Material::new().with_diffuse(Rgb::grey_f32(0.5).unwrap());
+    /// let shiny: Material<Phong> =
+    ///     base.with_specular(Phong { color: Rgb::WHITE, shininess: Exponent::from_int(16) });
+    /// assert_eq!(shiny.diffuse, base.diffuse); // colours are kept
+    /// assert_eq!(shiny.with_specular(NoSpecular), base); // and the term can be dropped again
+    /// ```
     pub fn with_specular<T: Specular>(self, specular: T) -> Material<T> {
         Material {
             emission: self.emission,

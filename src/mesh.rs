@@ -8,6 +8,15 @@ use crate::normalize::normalize_len;
 use crate::vector::{Unit3, Vec3};
 
 /// Why a mesh cannot be drawn.
+///
+/// ```
+/// use fixshade::mesh::{vertex_normals, MeshError};
+/// use fixshade::{Unit3, Vec3};
+/// let p = [Vec3::ZERO; 3];
+/// let (mut sums, mut out) = ([[0; 3]; 3], [Unit3::ZERO; 2]); // `out` is one short
+/// let r = vertex_normals(&p, &[[0, 1, 2]], &mut sums, &mut out);
+/// assert_eq!(r, Err(MeshError::BufferTooSmall));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MeshError {
     /// Triangle `triangle` names a vertex index `index` that is not there.
@@ -65,6 +74,16 @@ pub struct Mesh<'a> {
 
 impl<'a> Mesh<'a> {
     /// A mesh without normals.
+    ///
+    /// ```
+    /// use fixshade::mesh::Mesh;
+    /// use fixshade::Vec3;
+    /// let positions = [Vec3::ZERO; 4];
+    /// let indices = [[0, 1, 2], [0, 2, 3]];
+    /// let mesh = Mesh::new(&positions, &indices);
+    /// assert!(mesh.normals.is_none());
+    /// assert_eq!((mesh.positions.len(), mesh.indices.len()), (4, 2));
+    /// ```
     pub const fn new(positions: &'a [Vec3], indices: &'a [[u16; 3]]) -> Self {
         Mesh {
             positions,
@@ -74,12 +93,33 @@ impl<'a> Mesh<'a> {
     }
 
     /// Adds normals.
+    ///
+    /// ```
+    /// use fixshade::mesh::{Mesh, MeshError};
+    /// use fixshade::{Unit3, Vec3};
+    /// let positions = [Vec3::ZERO; 3];
+    /// let normals = [Unit3::Z; 3];
+    /// let mesh = Mesh::new(&positions, &[[0, 1, 2]]).with_normals(&normals);
+    /// assert_eq!(mesh.normals, Some(&normals[..]));
+    /// assert!(mesh.validate().is_ok());
+    /// let short = Mesh::new(&positions, &[[0, 1, 2]]).with_normals(&normals[..2]);
+    /// assert_eq!(short.validate(), Err(MeshError::NormalCount));
+    /// ```
     pub const fn with_normals(mut self, normals: &'a [Unit3]) -> Self {
         self.normals = Some(normals);
         self
     }
 
     /// Checks every index and the normals' count.
+    ///
+    /// ```
+    /// use fixshade::mesh::{Mesh, MeshError};
+    /// use fixshade::Vec3;
+    /// let positions = [Vec3::ZERO; 3];
+    /// let mesh = Mesh::new(&positions, &[[0, 1, 2], [2, 1, 3]]);
+    /// let err = MeshError::IndexOutOfRange { triangle: 1, index: 3 };
+    /// assert_eq!(mesh.validate(), Err(err));
+    /// ```
     pub fn validate(&self) -> Result<(), MeshError> {
         if let Some(n) = self.normals {
             if n.len() != self.positions.len() {
@@ -108,6 +148,18 @@ impl<'a> Mesh<'a> {
 /// right together until they fit 30 bits, so the cross product's terms
 /// (below 2⁶⁰) fit `i64`. The shift loses only bits far below the
 /// `I2F14` result's precision.
+///
+/// ```
+/// use fixshade::mesh::face_normal;
+/// use fixshade::{Unit3, Vec3};
+/// let a = Vec3::ZERO;
+/// let b = Vec3::from_f32(2.0, 0.0, 0.0).unwrap();
+/// let c = Vec3::from_f32(0.0, 3.0, 0.0).unwrap();
+/// assert_eq!(face_normal(a, b, c), Some(Unit3::Z)); // counter-clockwise seen from +z
+/// assert_eq!(face_normal(a, c, b), Some(Unit3::Z.neg()));
+/// let d = Vec3::from_f32(4.0, 0.0, 0.0).unwrap();
+/// assert_eq!(face_normal(a, b, d), None); // collinear
+/// ```
 pub fn face_normal(a: Vec3, b: Vec3, c: Vec3) -> Option<Unit3> {
     let (a, b, c) = (a.to_bits(), b.to_bits(), c.to_bits());
     let mut u = [0, 1, 2].map(|i| b[i] as i64 - a[i] as i64);

@@ -36,8 +36,31 @@ use crate::division::{floor_div, recip63};
 use crate::widening::{mul_by_narrow, mul_by_small, mul_i32_u16, mul_narrow, mul_u32};
 
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, SUBPIXEL_BITS};
+/// // Pixel (x, y) has its centre at 16x + 8: a triangle whose vertices
+/// // sit on pixel corners, one pixel in from the target's, covers its box.
+/// let px = |c: i64| c << SUBPIXEL_BITS;
+/// let v = [(px(1), px(1)), (px(1), px(5)), (px(5), px(1))]
+///     .map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let mut n = 0;
+/// rasterize(&v, ClipRect::of_size(8, 8).unwrap(), false, |s| n += s.x1 - s.x0 + 1);
+/// // The centres strictly below the diagonal of the 4 × 4 box: those on
+/// // it lie on a right edge, which the top-left rule leaves out.
+/// assert_eq!(n, 3 + 2 + 1);
+/// ```
 pub const SUBPIXEL_BITS: u32 = 4;
 /// The largest snapped coordinate magnitude, in 1/16 pixel.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, COORD_LIMIT};
+/// let clip = ClipRect::of_size(8, 8).unwrap();
+/// let tri = |far: i64| [(0, 0), (0, far), (far, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// // At the limit the triangle covers the target; past it, it is refused.
+/// assert!(rasterize(&tri(COORD_LIMIT), clip, false, |_| ()).is_some());
+/// assert!(rasterize(&tri(COORD_LIMIT + 1), clip, false, |_| ()).is_none());
+/// ```
 pub const COORD_LIMIT: i64 = 1 << 28;
 
 /// Attributes lie in `−ATTR_LIMIT ≤ a < ATTR_LIMIT` (34-bit signed
@@ -45,6 +68,17 @@ pub const COORD_LIMIT: i64 = 1 << 28;
 /// below 2³⁴ in magnitude, which the set-up's exact
 /// products and plane equations assume (the renderer's depths, colours,
 /// normals and positions are all below it).
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, ATTR_LIMIT};
+/// let clip = ClipRect::of_size(8, 8).unwrap();
+/// let tri = |a: i64| [(0, 0, a), (0, 256, -a), (256, 0, 0)]
+///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
+/// let mut lo = i64::MAX;
+/// assert!(rasterize(&tri(ATTR_LIMIT - 1), clip, false, |s| lo = lo.min(s.start[0])).is_some());
+/// assert!(lo >= -ATTR_LIMIT);
+/// assert!(rasterize(&tri(ATTR_LIMIT), clip, false, |_| ()).is_none());
+/// ```
 pub const ATTR_LIMIT: i64 = 1 << 33;
 
 /// A triangle vertex in window space: position in 1/16 pixel and `N`
@@ -55,6 +89,19 @@ pub const ATTR_LIMIT: i64 = 1 << 33;
 /// limits ([`RasterVertex::within_limits`]);
 /// [`RasterVertex::clamped`] moves a vertex inside them, as the renderer
 /// does with a vertex far off screen.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
+/// // One attribute, 0 at the left and 1600 at the right (16 pixels on):
+/// // 100 units per pixel along x.
+/// let v = [(0, 0, 0), (0, 256, 0), (256, 0, 1600)]
+///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
+/// let mut first = None;
+/// rasterize(&v, ClipRect::of_size(16, 16).unwrap(), false, |s| {
+///     first.get_or_insert((s.start[0], s.step[0]));
+/// });
+/// assert_eq!(first, Some((50, 100))); // pixel (0, 0)'s centre is half a pixel in
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RasterVertex<const N: usize> {
     /// x in 1/16 pixel, within ±[`COORD_LIMIT`].
@@ -110,6 +157,15 @@ impl<const N: usize> RasterVertex<N> {
 /// The inclusive pixel rectangle that may be drawn (the target's bounds),
 /// at most [`CLIP_LIMIT`] pixels a side for the rasterizer to draw in it
 /// (see [`ClipRect::within_limits`]).
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
+/// let v = [(0, 0), (0, 4096), (4096, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let clip = ClipRect { x0: 2, y0: 3, x1: 5, y1: 4 };
+/// let mut rows = Vec::new();
+/// rasterize(&v, clip, false, |s| rows.push((s.y, s.x0, s.x1)));
+/// assert_eq!(rows, [(3, 2, 5), (4, 2, 5)]); // nothing outside the rectangle
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ClipRect {
     /// First column.
@@ -126,6 +182,15 @@ pub struct ClipRect {
 /// largest target ([`crate::render::MAX_TARGET_SIDE`]). Attributes are
 /// stepped across it, row by row and column by column; with gradients of
 /// at most 2⁴⁰ per pixel that stays within `i64`.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, CLIP_LIMIT};
+/// let v = [(0, 0), (0, 64), (64, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let huge = ClipRect { x0: 0, y0: 0, x1: CLIP_LIMIT as i32, y1: 0 };
+/// assert!(rasterize(&v, huge, false, |_| ()).is_none()); // refused, not drawn
+/// let fits = ClipRect { x1: CLIP_LIMIT as i32 - 1, ..huge };
+/// assert!(rasterize(&v, fits, false, |_| ()).is_some());
+/// ```
 pub const CLIP_LIMIT: i64 = 1 << 20;
 
 impl ClipRect {
@@ -147,6 +212,12 @@ impl ClipRect {
 
     /// The rectangle of a `width × height` target at the origin; `None`
     /// when it is empty.
+    ///
+    /// ```
+    /// use fixshade::rasterizer::ClipRect;
+    /// assert_eq!(ClipRect::of_size(320, 240), Some(ClipRect { x0: 0, y0: 0, x1: 319, y1: 239 }));
+    /// assert_eq!(ClipRect::of_size(0, 240), None);
+    /// ```
     pub fn of_size(width: u32, height: u32) -> Option<ClipRect> {
         if width == 0 || height == 0 {
             return None;
@@ -161,6 +232,16 @@ impl ClipRect {
 }
 
 /// Which way a triangle faces on screen.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, Facing, RasterVertex};
+/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let clip = ClipRect::of_size(16, 16).unwrap();
+/// let back = [v[0], v[2], v[1]];
+/// assert_eq!(rasterize(&v, clip, true, |_| ()), Some(Facing::Front));
+/// assert_eq!(rasterize(&back, clip, false, |_| ()), Some(Facing::Back)); // kept: no culling
+/// assert_eq!(rasterize(&back, clip, true, |_| ()), None); // culled
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Facing {
     /// Counter-clockwise in NDC (clockwise on screen, y down).
@@ -462,6 +543,16 @@ pub struct Walk<const N: usize> {
 
 /// A set-up triangle: its walk at the first drawn row, the last row drawn
 /// (the band's), and what a sliver's span starts need.
+///
+/// ```
+/// use fixshade::rasterizer::{ClipRect, Facing, RasterVertex, Triangle};
+/// let v = [(8, 8), (200, 8), (8, 200)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+/// let t = Triangle::setup(&v, ClipRect::of_size(16, 16).unwrap(), false).unwrap();
+/// assert_eq!(t.facing, Facing::Back); // kept (no culling), and drawn all the same
+/// let mut rows = Vec::new();
+/// t.for_each_span(|s| rows.push(s.y));
+/// assert_eq!(rows, (0..12).collect::<Vec<_>>()); // row centres 8 … 184 lie inside
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Triangle<'v, const N: usize> {
     walk: Walk<N>,
@@ -506,6 +597,19 @@ fn plane_at<const N: usize>(
 
 /// What a span covers: row `y`, columns `x0 ..= x1`, the attributes at `x0`
 /// and their step per pixel.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
+/// // attr = 10·x_px + 1000·y_px at pixel centres.
+/// let v = [(0, 0, 0), (0, 512, 32_000), (512, 0, 320)]
+///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
+/// rasterize(&v, ClipRect::of_size(32, 32).unwrap(), false, |s| {
+///     let at = |x: i32| 10 * x as i64 + 1000 * s.y as i64 + 505;
+///     assert_eq!(s.start[0], at(s.x0));
+///     assert_eq!(s.start[0] + (s.x1 - s.x0) as i64 * s.step[0], at(s.x1));
+///     assert!(s.bounded);
+/// });
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Span<const N: usize> {
     /// Row.
@@ -536,9 +640,37 @@ pub struct Span<const N: usize> {
 /// most 256 pixels on each axis, then ½ for the final rounding: below 258)
 /// plus the stepping's (the same per pixel over at most 2 × 256 pixels:
 /// below 257). 1024 leaves twice that.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, DRIFT};
+/// let v = [(3, 5, 0), (90, 1000, 77_777), (1700, 40, -12_345)]
+///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
+/// rasterize(&v, ClipRect::of_size(128, 128).unwrap(), false, |s| {
+///     assert!(s.bounded);
+///     for k in 0..=(s.x1 - s.x0) as i64 {
+///         let a = s.start[0] + k * s.step[0];
+///         assert!((-12_345 - DRIFT..=77_777 + DRIFT).contains(&a));
+///     }
+/// });
+/// ```
 pub const DRIFT: i64 = 1024;
 
 /// The largest gradient (per pixel, attribute units) of a bounded triangle.
+///
+/// ```
+/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, BOUNDED_GRADIENT};
+/// // Gradient along x: attr(256 sub-pixels = 16 px) / 16 px.
+/// let tri = |a: i64| {
+///     [(0, 0, 0), (0, 256, 0), (256, 0, a)].map(|(x, y, a)| RasterVertex { x, y, attr: [a] })
+/// };
+/// let bounded = |a| {
+///     let mut all = true;
+///     rasterize(&tri(a), ClipRect::of_size(16, 16).unwrap(), false, |s| all &= s.bounded);
+///     all
+/// };
+/// assert!(bounded(16 * BOUNDED_GRADIENT));
+/// assert!(!bounded(16 * BOUNDED_GRADIENT + 16));
+/// ```
 pub const BOUNDED_GRADIENT: i64 = 1 << 24;
 
 impl<'v, const N: usize> Triangle<'v, N> {
@@ -832,6 +964,23 @@ impl<'v, const N: usize> Triangle<'v, N> {
 
     /// Calls `f` with each non-empty span, top to bottom.
     #[inline(always)]
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+    /// // Two triangles sharing a diagonal: each pixel of the square once.
+    /// let q = [(0, 0), (256, 0), (256, 256), (0, 256)]
+    ///     .map(|(x, y)| RasterVertex { x, y, attr: [] });
+    /// let clip = ClipRect::of_size(16, 16).unwrap();
+    /// let mut hits = [0u8; 256];
+    /// for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+    ///     Triangle::setup(&t, clip, false).unwrap().for_each_span(|s| {
+    ///         for x in s.x0..=s.x1 {
+    ///             hits[(s.y * 16 + x) as usize] += 1;
+    ///         }
+    ///     });
+    /// }
+    /// assert!(hits.iter().all(|&h| h == 1));
+    /// ```
     pub fn for_each_span(self, f: impl FnMut(&Span<N>)) {
         self.walk_rows(f);
     }
@@ -840,6 +989,18 @@ impl<'v, const N: usize> Triangle<'v, N> {
     /// last row drawn if the triangle goes on below it (and is not a
     /// sliver): what [`Walk::resume`] continues in the next band.
     #[inline(always)]
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+    /// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+    /// let vp = ClipRect::of_size(16, 16).unwrap();
+    /// // Rows 0 ..= 3 of its 12: it goes on below.
+    /// let t = Triangle::setup_rows(&v, vp, (0, 3), false).unwrap();
+    /// assert!(t.walk_rows(|s| assert!(s.y <= 3)).is_some());
+    /// // All of them: nothing left.
+    /// let t = Triangle::setup_rows(&v, vp, (0, 15), false).unwrap();
+    /// assert!(t.walk_rows(|_| ()).is_none());
+    /// ```
     pub fn walk_rows(self, f: impl FnMut(&Span<N>)) -> Option<Walk<N>> {
         let Triangle {
             mut walk,
@@ -887,6 +1048,17 @@ impl<const N: usize> Walk<N> {
     /// left, stepping over any before `rows.0` without drawing; returns the
     /// walk paused below `rows.1` if the triangle goes on below it.
     #[inline(always)]
+    ///
+    /// ```
+    /// use fixshade::rasterizer::{ClipRect, RasterVertex, Triangle};
+    /// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+    /// let vp = ClipRect::of_size(16, 16).unwrap();
+    /// let walk = Triangle::setup_rows(&v, vp, (0, 1), false).unwrap().walk_rows(|_| ()).unwrap();
+    /// // Rows 2 ..= 4 are stepped over without drawing; 5 ..= 15 drawn.
+    /// let mut ys = Vec::new();
+    /// assert!(walk.resume((5, 15), |s| ys.push(s.y)).is_none());
+    /// assert_eq!(ys, (5..12).collect::<Vec<_>>());
+    /// ```
     pub fn resume(mut self, rows: (i32, i32), f: impl FnMut(&Span<N>)) -> Option<Walk<N>> {
         let (first, last) = (rows.0 as i64, rows.1 as i64);
         if self.y < first {

@@ -52,6 +52,13 @@ use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
 use crate::widening::{mul_by_narrow, mul_narrow};
 
 /// Which shading mode a type selects.
+///
+/// ```
+/// use fixshade::render::{Flat, Gouraud, PhongShading, ShadingKind, ShadingMode};
+/// assert_eq!(Flat::KIND, ShadingKind::Flat);
+/// assert_eq!(Gouraud::KIND, ShadingKind::Gouraud);
+/// assert_eq!(PhongShading::KIND, ShadingKind::Phong);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ShadingKind {
     /// One colour per triangle.
@@ -64,6 +71,40 @@ pub enum ShadingKind {
 
 /// A shading mode, chosen by type: [`Flat`], [`Gouraud`] or
 /// [`PhongShading`].
+///
+/// The mode is a type parameter of the draw calls, so that a program that
+/// draws in one mode compiles only that mode's span code:
+///
+/// ```
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Flat, NoDepth, PhongShading};
+/// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
+/// let mut cache = [CachedVertex::default(); 3];
+/// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
+/// renderer.draw_framebuffer::<Flat, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// let mut fb = Framebuffer::new(&mut b, 32, 32).unwrap();
+/// renderer.draw_framebuffer::<PhongShading, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// // A flat triangle with equal vertex normals: every mode agrees.
+/// assert_eq!(a, b);
+/// ```
 pub trait ShadingMode {
     /// The mode.
     const KIND: ShadingKind;
@@ -71,6 +112,36 @@ pub trait ShadingMode {
 
 /// Flat shading: the equation at each triangle's centroid with its face
 /// normal (SPEC.md 4).
+///
+/// ```
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Flat, NoDepth};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut cache = [CachedVertex::default(); 3];
+/// renderer.draw_framebuffer::<Flat, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// // One colour for the whole triangle.
+/// let lit: Vec<u16> = px.iter().copied().filter(|&p| p != 0).collect();
+/// assert!(lit.len() > 50 && lit.iter().all(|&p| p == lit[0]));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Flat;
 impl ShadingMode for Flat {
@@ -81,6 +152,37 @@ impl ShadingMode for Flat {
 /// integer arithmetic (16 fractional bits below the RGB565 step; 11, 10
 /// for green, on spans of at least [`PAIR_SPAN`] pixels, see
 /// [`crate::span`]).
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::{raw::RawU16, Rgb565}, prelude::*};
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z, Unit3::Z, Unit3::Y];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Gouraud, NoDepth};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut cache = [CachedVertex::default(); 3];
+/// renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// // The top vertex's normal faces away from the light: darker towards it.
+/// let green = |x: usize, y: usize| Rgb565::from(RawU16::new(px[y * 32 + x])).g();
+/// assert!(green(16, 10) < green(16, 20));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Gouraud;
 impl ShadingMode for Gouraud {
@@ -89,6 +191,36 @@ impl ShadingMode for Gouraud {
 
 /// Phong shading: normal and eye position interpolated, the normal
 /// renormalised and the equation evaluated per pixel.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::{raw::RawU16, Rgb565}, prelude::*};
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z, Unit3::Z, Unit3::Y];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{NoDepth, PhongShading};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut cache = [CachedVertex::default(); 3];
+/// renderer.draw_framebuffer::<PhongShading, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// let green = |x: usize, y: usize| Rgb565::from(RawU16::new(px[y * 32 + x])).g();
+/// assert!(green(16, 10) < green(16, 20));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct PhongShading;
 impl ShadingMode for PhongShading {
@@ -96,6 +228,12 @@ impl ShadingMode for PhongShading {
 }
 
 /// Render switches that cost nothing to keep at run time.
+///
+/// ```
+/// use fixshade::render::RenderOptions;
+/// let o = RenderOptions { dither: true, ..RenderOptions::default() };
+/// assert!(o.cull && !o.two_sided && o.dither);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct RenderOptions {
     /// Drop back faces (SPEC.md 5).
@@ -120,6 +258,38 @@ impl Default for RenderOptions {
 
 /// Why a draw call failed. Nothing was drawn unless the error is
 /// [`RenderError::Target`].
+///
+/// ```
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::depth::DepthBuffer;
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Gouraud, RenderError};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut zs = [u16::MAX; 16 * 16];
+/// let mut depth = DepthBuffer::new(&mut zs, 16, 16).unwrap(); // smaller than the target
+/// let mut cache = [CachedVertex::default(); 3];
+/// let e = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut depth, &mut cache);
+/// assert_eq!(e, Err(RenderError::DepthTooSmall));
+/// assert!(px.iter().all(|&p| p == 0)); // nothing drawn
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RenderError<E> {
     /// The mesh is inconsistent.
@@ -161,6 +331,36 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
 ///
 /// Each count saturates at `u32::MAX` (a draw call into a target of 2²⁰ ×
 /// 2²⁰ pixels, or one cut in many bands, can pass it).
+///
+/// ```
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Gouraud, NoDepth};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut cache = [CachedVertex::default(); 3];
+/// let s = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache);
+/// let s = s.unwrap();
+/// assert_eq!((s.triangles, s.drawn, s.clipped, s.lit), (1, 1, 0, 3));
+/// assert_eq!(s.pixels as usize, px.iter().filter(|&&p| p != 0).count());
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct DrawStats {
     /// Triangles in the mesh.
@@ -216,6 +416,34 @@ const F_NORMAL: u8 = 8;
 
 /// One vertex's per-frame data, in a cache the caller provides (one per
 /// mesh vertex): 104 bytes (`i64` fields are 8-aligned on Cortex-M too).
+///
+/// ```
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::framebuffer::Framebuffer;
+/// use fixshade::render::{Gouraud, NoDepth, RenderError};
+/// let mut px = [0u16; 32 * 32];
+/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+/// let mut short = [CachedVertex::default(); 2]; // the mesh has 3 vertices
+/// let e = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut short);
+/// assert_eq!(e, Err(RenderError::CacheTooSmall));
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct CachedVertex {
     eye: Vec3,
@@ -228,6 +456,46 @@ pub struct CachedVertex {
 }
 
 /// The largest target side in pixels.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// # use fixshade::camera::Camera;
+/// # use fixshade::illumination::InfiniteViewer;
+/// # use fixshade::light::DirectionalLight;
+/// # use fixshade::mesh::Mesh;
+/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// # static P: [Vec3; 3] = [
+/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+/// #     Vec3::from_bits(0, 1 << 24, 0),
+/// # ];
+/// # static N: [Unit3; 3] = [Unit3::Z; 3];
+/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+/// # );
+/// use fixshade::render::{Gouraud, NoDepth, RenderError, MAX_TARGET_SIDE};
+/// // A target that only reports its size (it is never drawn into).
+/// struct Wide;
+/// impl OriginDimensions for Wide {
+///     fn size(&self) -> Size {
+///         Size::new(MAX_TARGET_SIDE + 1, 1)
+///     }
+/// }
+/// impl DrawTarget for Wide {
+///     type Color = Rgb565;
+///     type Error = ();
+///     fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, _: I) -> Result<(), ()> {
+///         Err(())
+///     }
+/// }
+/// let mut cache = [CachedVertex::default(); 3];
+/// let e = renderer.draw::<Gouraud, _, _>(&mesh, &mut Wide, &mut NoDepth, &mut cache);
+/// assert_eq!(e, Err(RenderError::TargetTooLarge));
+/// ```
 pub const MAX_TARGET_SIDE: u32 = 1 << 20;
 // The renderer's viewports are clip rectangles the rasterizer takes.
 const _: () = assert!(MAX_TARGET_SIDE as i64 == crate::rasterizer::CLIP_LIMIT);
@@ -277,6 +545,41 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// Prepares a frame: lights to eye space, model-view and normal
     /// matrices. A singular model matrix gives zero normals (lit by
     /// `E + A·Ka` only).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
+    /// use fixshade::camera::Camera;
+    /// use fixshade::framebuffer::Framebuffer;
+    /// use fixshade::illumination::InfiniteViewer;
+    /// use fixshade::light::DirectionalLight;
+    /// use fixshade::mesh::Mesh;
+    /// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
+    /// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// static P: [Vec3; 3] = [
+    ///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    ///     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    ///     Vec3::from_bits(0, 1 << 24, 0),
+    /// ];
+    /// static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let glow = Material::new().with_emission(Rgb::grey_f32(0.5).unwrap());
+    /// // Flattens z: singular, though the triangle (at z = 0) keeps its shape.
+    /// let m = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0; 4], [0.0, 0.0, 0.0, 1.0]];
+    /// let squash = Mat4::from_f32(m).unwrap();
+    /// let r = Renderer::<_, InfiniteViewer, _>::new(
+    ///     &camera, squash, &glow, Rgb::BLACK, &sun, RenderOptions::default(),
+    /// );
+    /// let mut px = [0u16; 32 * 32];
+    /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+    /// let mut cache = [CachedVertex::default(); 3];
+    /// let s = r.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+    /// // No normal survives it: the sun adds nothing to the emission.
+    /// let e = RawU16::from(r.lighting().ambient().to_rgb565()).into_inner();
+    /// assert!(s.pixels > 50 && e != 0);
+    /// assert!(px.iter().all(|&p| p == 0 || p == e));
+    /// ```
     pub fn new(
         camera: &Camera,
         model: Mat4,
@@ -296,11 +599,59 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     }
 
     /// The prepared illumination equation.
+    ///
+    /// ```
+    /// # use fixshade::camera::Camera;
+    /// # use fixshade::illumination::InfiniteViewer;
+    /// # use fixshade::light::DirectionalLight;
+    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// # static P: [Vec3; 3] = [
+    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(0, 1 << 24, 0),
+    /// # ];
+    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+    /// # );
+    /// use fixshade::Shade;
+    /// // A surface facing the light (0.8 diffuse, no ambient).
+    /// let s = renderer.lighting().shade(Vec3::ZERO, Unit3::Z);
+    /// assert_ne!(s, Shade::BLACK);
+    /// assert_eq!(renderer.lighting().ambient(), Shade::BLACK);
+    /// ```
     pub fn lighting(&self) -> &Lighting<S, V, L> {
         &self.lighting
     }
 
     /// The render switches.
+    ///
+    /// ```
+    /// # use fixshade::camera::Camera;
+    /// # use fixshade::illumination::InfiniteViewer;
+    /// # use fixshade::light::DirectionalLight;
+    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// # static P: [Vec3; 3] = [
+    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(0, 1 << 24, 0),
+    /// # ];
+    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+    /// # );
+    /// assert_eq!(renderer.options(), RenderOptions::default());
+    /// ```
     pub fn options(&self) -> RenderOptions {
         self.options
     }
@@ -310,6 +661,38 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// `cache` needs one [`CachedVertex`] per mesh vertex. The target's
     /// bounding box is the viewport (SPEC.md 1); no pixel outside it is
     /// sent. Clearing the target and the depth buffer is the caller's.
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};
+    /// # use fixshade::camera::Camera;
+    /// # use fixshade::illumination::InfiniteViewer;
+    /// # use fixshade::light::DirectionalLight;
+    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// # static P: [Vec3; 3] = [
+    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(0, 1 << 24, 0),
+    /// # ];
+    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+    /// # );
+    /// use fixshade::render::{Gouraud, NoDepth};
+    /// // MockDisplay (64 × 64) panics on a pixel drawn twice or out of bounds.
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// let mut cache = [CachedVertex::default(); 3];
+    /// let s = renderer.draw::<Gouraud, _, _>(&mesh, &mut display, &mut NoDepth, &mut cache);
+    /// let drawn = (0..64)
+    ///     .flat_map(|y| (0..64).map(move |x| Point::new(x, y)))
+    ///     .filter(|&p| display.get_pixel(p).is_some())
+    ///     .count();
+    /// assert_eq!(s.unwrap().pixels as usize, drawn);
+    /// ```
     pub fn draw<M, T, D>(
         &self,
         mesh: &Mesh,
@@ -333,6 +716,36 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// As [`Renderer::draw`], into a [`Framebuffer`] written in place: the
     /// fast path (no `fill_contiguous` call per span). The pixels are the
     /// same.
+    ///
+    /// ```
+    /// # use fixshade::camera::Camera;
+    /// # use fixshade::illumination::InfiniteViewer;
+    /// # use fixshade::light::DirectionalLight;
+    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
+    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// # static P: [Vec3; 3] = [
+    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
+    /// #     Vec3::from_bits(0, 1 << 24, 0),
+    /// # ];
+    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
+    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
+    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
+    /// # );
+    /// use fixshade::framebuffer::Framebuffer;
+    /// use fixshade::render::{Gouraud, NoDepth};
+    /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
+    /// let mut cache = [CachedVertex::default(); 3];
+    /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
+    /// renderer.draw::<Gouraud, _, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+    /// let mut fb = Framebuffer::new(&mut b, 32, 32).unwrap();
+    /// renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+    /// assert_eq!(a, b); // the same pixels as through `DrawTarget`
+    /// ```
     pub fn draw_framebuffer<M, D>(
         &self,
         mesh: &Mesh,

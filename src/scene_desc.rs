@@ -36,18 +36,67 @@
 use std::fmt;
 
 /// Largest accepted viewport width or height, in pixels.
+///
+/// ```
+/// use fixshade::scene_desc::{SceneError, MAX_DIMENSION};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(MAX_DIMENSION, 1, 12, 6);
+/// assert!(s.validate().is_ok());
+/// s.height = MAX_DIMENSION + 1;
+/// assert!(matches!(s.validate(), Err(SceneError::TooLarge { max: MAX_DIMENSION, .. })));
+/// ```
 pub const MAX_DIMENSION: u32 = 8192;
 
 /// Largest accepted `samples_k` of an area light (it expands to `k²` point lights).
+///
+/// ```
+/// use fixshade::scene_desc::*;
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// let area = |samples_k| LightDesc::Area {
+///     center: [0.0, 2.0, 0.0], edge_u: [1.0, 0.0, 0.0], edge_v: [0.0, 0.0, 1.0], samples_k,
+///     diffuse: WHITE, specular: WHITE, attenuation: DEFAULT_ATTENUATION,
+/// };
+/// s.lights = vec![area(MAX_AREA_SAMPLES)];
+/// assert!(s.validate().is_ok());
+/// s.lights = vec![area(MAX_AREA_SAMPLES + 1)];
+/// assert!(s.validate().unwrap_err().to_string().starts_with("lights[0].samples_k"));
+/// ```
 pub const MAX_AREA_SAMPLES: u32 = 64;
 
 /// Default light attenuation `[c0, c1, c2]`: no attenuation.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, DEFAULT_ATTENUATION};
+/// let [c0, c1, c2] = DEFAULT_ATTENUATION;
+/// for d in [0.0, 1.0, 1e6] {
+///     assert_eq!(1.0 / (c0 + c1 * d + c2 * d * d), 1.0); // full intensity at any distance
+/// }
+/// let point = LightDesc::point([0.0, 2.0, 0.0]);
+/// assert!(matches!(point, LightDesc::Point { attenuation: DEFAULT_ATTENUATION, .. }));
+/// ```
 pub const DEFAULT_ATTENUATION: [f64; 3] = [1.0, 0.0, 0.0];
 
 /// Default light intensity (diffuse and specular): white.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, WHITE};
+/// let LightDesc::Directional { diffuse, specular, .. } = LightDesc::directional([0.0, 0.0, 1.0])
+/// else { unreachable!() };
+/// assert_eq!((diffuse, specular), (WHITE, WHITE));
+/// ```
 pub const WHITE: [f64; 3] = [1.0, 1.0, 1.0];
 
 /// The 4 × 4 identity matrix (the default model transform).
+///
+/// ```
+/// use fixshade::scene_desc::IDENTITY;
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6); // built with `SceneDesc::new`
+/// assert_eq!(s.model, IDENTITY);
+/// s.model[3] = [0.0, 0.0, 1.0, 1.0]; // no longer affine
+/// assert!(s.validate().is_err());
+/// ```
 pub const IDENTITY: [[f64; 4]; 4] = [
     [1.0, 0.0, 0.0, 0.0],
     [0.0, 1.0, 0.0, 0.0],
@@ -59,6 +108,18 @@ pub const IDENTITY: [[f64; 4]; 4] = [
 ///
 /// Build one with [`SceneDesc::new`] (which fills every optional field with the
 /// defaults of `SCENE_FORMAT.md`) and adjust the public fields.
+///
+/// ```
+/// use fixshade::reference::render;
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut scene = sphere_scene(16, 16, 12, 6); // a unit sphere, 3 units in front of the eye
+/// let full = render(&scene).unwrap().covered_count();
+/// for i in 0..3 {
+///     scene.model[i][i] = 0.5; // half size
+/// }
+/// assert!(scene.validate().is_ok());
+/// assert!(render(&scene).unwrap().covered_count() < full);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneDesc {
     /// Viewport width in pixels (0 gives an empty frame; at most [`MAX_DIMENSION`]).
@@ -97,6 +158,16 @@ pub struct SceneDesc {
 }
 
 /// The camera: a look-at frame plus a projection, in world space.
+///
+/// ```
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6); // eye at (0, 0, 3) looking at the origin
+/// s.camera.up = [0.0, 0.0, 1.0];
+/// let err = s.validate().unwrap_err();
+/// assert_eq!(err.to_string(), "camera.up: is zero or parallel to the view direction");
+/// s.camera.target = s.camera.eye;
+/// assert_eq!(s.validate().unwrap_err().to_string(), "camera.target: equals camera.eye");
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraDesc {
     /// Eye position.
@@ -114,6 +185,16 @@ pub struct CameraDesc {
 }
 
 /// The projection of a [`CameraDesc`].
+///
+/// ```
+/// use fixshade::scene_desc::Projection;
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// s.camera.projection = Projection::Orthographic { height: 2.5 };
+/// assert!(s.validate().is_ok());
+/// s.camera.projection = Projection::Perspective { fovy_deg: 180.0 };
+/// assert!(s.validate().unwrap_err().to_string().starts_with("camera.fovy_deg"));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
     /// OpenGL perspective projection with vertical field of view in degrees, in (0, 180).
@@ -130,6 +211,17 @@ pub enum Projection {
 }
 
 /// A triangle mesh in object space.
+///
+/// ```
+/// use fixshade::reference::render;
+/// use fixshade::scene_desc::{MeshDesc, SceneError};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// s.mesh = MeshDesc::default(); // empty: valid, nothing drawn
+/// assert_eq!(render(&s).unwrap().covered_count(), 0);
+/// s.mesh = MeshDesc { positions: vec![[0.0; 3]], normals: Some(vec![]), indices: vec![] };
+/// assert_eq!(s.validate(), Err(SceneError::NormalCount { positions: 1, normals: 0 }));
+/// ```
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct MeshDesc {
     /// Vertex positions.
@@ -176,6 +268,18 @@ impl Default for MaterialDesc {
 }
 
 /// A light, in world space. Intensities are non-negative and may exceed 1.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, DEFAULT_ATTENUATION, WHITE};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6); // has one directional light
+/// s.lights.push(LightDesc::Spot {
+///     position: [0.0, 3.0, 0.0], axis: [0.0, -1.0, 0.0], cutoff_deg: 95.0, exponent: 2.0,
+///     diffuse: [2.0; 3], specular: WHITE, attenuation: DEFAULT_ATTENUATION,
+/// });
+/// let err = s.validate().unwrap_err();
+/// assert_eq!(err.to_string(), "lights[1].cutoff_deg: 95 out of range (must be in [0, 90])");
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightDesc {
     /// A light at infinity.
@@ -268,6 +372,19 @@ impl LightDesc {
 }
 
 /// Shading mode (SPEC.md section 4).
+///
+/// ```
+/// use std::collections::BTreeSet;
+/// use fixshade::{reference::render, scene_desc::*, standard_scenes::sphere_scene};
+/// let colours = |s: &SceneDesc| -> usize {
+///     render(s).unwrap().to_rgb565([0.0; 3]).into_iter().collect::<BTreeSet<_>>().len()
+/// };
+/// let mut s = sphere_scene(16, 16, 3, 2); // 6 triangles
+/// s.shading = Shading::Flat;
+/// assert!(colours(&s) <= 6 + 1); // one colour per triangle, and the background
+/// s.shading = Shading::Gouraud;
+/// assert!(colours(&s) > 7);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Shading {
     /// One colour per triangle.
@@ -280,6 +397,21 @@ pub enum Shading {
 }
 
 /// Specular model (SPEC.md section 3).
+///
+/// ```
+/// use fixshade::reference::{illuminate, EyeLight, LightingModel};
+/// use fixshade::scene_desc::{MaterialDesc, SpecularModel, Viewer};
+/// let (w, h) = ([1.0; 3], 0.5f64.sqrt()); // the light 45° from the normal, the viewer along it
+/// let m = MaterialDesc { diffuse: [0.0; 3], specular: w, shininess: 1.0, ..Default::default() };
+/// let lights = [EyeLight::Directional { to_light: [0.0, h, h], diffuse: w, specular: w }];
+/// let spec = |specular_model| {
+///     let lm = LightingModel { material: &m, global_ambient: [0.0; 3], lights: &lights,
+///         specular_model, viewer: Viewer::Infinite };
+///     illuminate(&lm, [0.0, 0.0, -1.0], [0.0, 0.0, 1.0])[0]
+/// };
+/// assert!((spec(SpecularModel::Phong) - h).abs() < 1e-12); // R·V = cos 45°
+/// assert!((spec(SpecularModel::Blinn) - 22.5f64.to_radians().cos()).abs() < 1e-12); // N·H
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum SpecularModel {
     /// `max(R·V, 0)^n`.
@@ -290,6 +422,21 @@ pub enum SpecularModel {
 }
 
 /// Viewer model (SPEC.md section 2).
+///
+/// ```
+/// use fixshade::reference::{illuminate, EyeLight, LightingModel};
+/// use fixshade::scene_desc::{MaterialDesc, SpecularModel, Viewer};
+/// let w = [1.0; 3];
+/// let m = MaterialDesc { diffuse: [0.0; 3], specular: w, shininess: 1.0, ..Default::default() };
+/// let lights = [EyeLight::Directional { to_light: [0.0, 0.0, 1.0], diffuse: w, specular: w }];
+/// let spec = |viewer| {
+///     let lm = LightingModel { material: &m, global_ambient: [0.0; 3], lights: &lights,
+///         specular_model: SpecularModel::Phong, viewer };
+///     illuminate(&lm, [2.0, 0.0, -2.0], [0.0, 0.0, 1.0])[0] // R = N = (0, 0, 1)
+/// };
+/// assert!((spec(Viewer::Infinite) - 1.0).abs() < 1e-12); // V = (0, 0, 1)
+/// assert!((spec(Viewer::Local) - 0.5f64.sqrt()).abs() < 1e-12); // V = normalise(−P)
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Viewer {
     /// `V` points from the surface point to the eye.

@@ -47,6 +47,16 @@ use crate::scene_desc::{
 
 /// Why a scene file was rejected. `Display` gives one line naming the key
 /// path, the JSON position or the OBJ line.
+///
+/// ```
+/// use std::path::Path;
+/// use fixshade::scene_file::{parse_scene, SceneFileError};
+/// let err = parse_scene("{\"width\": 8,", Path::new(".")).unwrap_err();
+/// assert!(matches!(err, SceneFileError::Syntax(_)) && err.key().is_none());
+/// assert!(err.to_string().contains("line 1 column 12"), "{err}");
+/// let err = parse_scene(r#"{"width": -1}"#, Path::new(".")).unwrap_err();
+/// assert_eq!(err.to_string(), "width: expected a non-negative integer, found -1");
+/// ```
 #[derive(Debug)]
 pub enum SceneFileError {
     /// The scene file itself could not be read.
@@ -157,6 +167,20 @@ pub fn load_scene(path: impl AsRef<Path>) -> Result<SceneDesc> {
 /// Parses a scene file's text; `base_dir` is the folder a relative
 /// `mesh.obj` path is resolved against. The result has passed
 /// [`SceneDesc::validate`].
+///
+/// ```
+/// use std::path::Path;
+/// use fixshade::{scene_desc::Shading, scene_file::parse_scene};
+/// let json = r#"{"width": 8, "height": 8, "shading": "flat", "mesh": MESH,
+///   "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], "up": [0, 1, 0], "near": 0.5, "far": 2,
+///              "projection": "orthographic", "height": 2}}"#;
+/// let tri = r#"{"positions": [[-1, -1, 0], [1, -1, 0], [0, 1, 0]], "indices": [[0, 1, 2]]}"#;
+/// let s = parse_scene(&json.replace("MESH", tri), Path::new(".")).unwrap();
+/// assert_eq!((s.shading, s.mesh.normals, s.cull), (Shading::Flat, None, true));
+/// let obj = json.replace("MESH", r#"{"obj": "m.obj"}"#);
+/// let err = parse_scene(&obj, Path::new("no_such_dir")).unwrap_err();
+/// assert!(err.to_string().starts_with("mesh.obj: cannot read no_such_dir/m.obj"), "{err}");
+/// ```
 pub fn parse_scene(json: &str, base_dir: &Path) -> Result<SceneDesc> {
     let root: Value =
         serde_json::from_str(json).map_err(|e| SceneFileError::Syntax(e.to_string()))?;

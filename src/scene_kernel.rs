@@ -40,9 +40,31 @@ use crate::specular_table::Exponent;
 use crate::vector::{FormatError, Mat4, Unit3, Vec3};
 
 /// The most lights a scene may have here.
+///
+/// ```
+/// use fixshade::scene_desc::LightDesc;
+/// use fixshade::scene_kernel::{KernelScene, KernelSceneError, MAX_LIGHTS};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// s.lights = vec![LightDesc::point([0.0, 3.0, 0.0]); MAX_LIGHTS];
+/// assert!(KernelScene::new(&s).is_ok());
+/// s.lights.push(LightDesc::directional([0.0, 0.0, 1.0]));
+/// assert_eq!(KernelScene::new(&s).unwrap_err(), KernelSceneError::TooManyLights);
+/// ```
 pub const MAX_LIGHTS: usize = 64;
 
 /// Why a scene cannot be rendered by the kernel.
+///
+/// ```
+/// use fixshade::scene_kernel::{KernelScene, KernelSceneError};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// s.mesh.positions[0] = [1000.0, 0.0, 0.0]; // a valid f64 scene, beyond I8F24's ±128
+/// assert!(s.validate().is_ok());
+/// let err = KernelScene::new(&s).unwrap_err();
+/// assert!(matches!(err, KernelSceneError::Format("mesh.positions", _)));
+/// assert!(err.to_string().starts_with("mesh.positions: "));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum KernelSceneError {
     /// A value does not fit a kernel format (the field is named).
@@ -51,7 +73,7 @@ pub enum KernelSceneError {
     Light(usize, LightError),
     /// The camera could not be built.
     Camera(CameraError),
-    /// More than 65536 vertices, or a mesh error.
+    /// A mesh error, found while deriving the vertex normals.
     Mesh(MeshError),
     /// More than [`MAX_LIGHTS`] lights.
     TooManyLights,
@@ -75,6 +97,16 @@ impl core::fmt::Display for KernelSceneError {
 impl std::error::Error for KernelSceneError {}
 
 /// A scene converted to the kernel's formats.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+/// let mut s = sphere_scene(16, 8, 12, 6);
+/// s.background = [1.0, 0.0, 0.0];
+/// let k = KernelScene::new(&s).unwrap();
+/// assert_eq!((k.width, k.height), (16, 8));
+/// assert_eq!(k.background, Rgb565::RED);
+/// ```
 #[derive(Clone, Debug)]
 pub struct KernelScene {
     /// Viewport width.
@@ -105,6 +137,16 @@ fn rgb(what: &'static str, c: [f64; 3]) -> Result<Rgb, KernelSceneError> {
 impl KernelScene {
     /// Converts a description (which should have passed
     /// [`SceneDesc::validate`]).
+    ///
+    /// ```
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+    /// let mut s = sphere_scene(16, 16, 12, 6);
+    /// s.mesh.normals = None; // derived in fixed point
+    /// let k = KernelScene::new(&s).unwrap();
+    /// let mesh = k.mesh();
+    /// assert_eq!(mesh.indices.len(), s.mesh.indices.len());
+    /// assert_eq!(mesh.normals.map(|n| n.len()), Some(s.mesh.positions.len()));
+    /// ```
     pub fn new(d: &SceneDesc) -> Result<KernelScene, KernelSceneError> {
         if d.mesh.positions.len() > 65536 {
             return Err(KernelSceneError::TooManyVertices);
@@ -183,6 +225,16 @@ impl KernelScene {
     }
 
     /// The mesh in kernel formats.
+    ///
+    /// ```
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene, Vec3};
+    /// let s = sphere_scene(16, 16, 12, 6);
+    /// let k = KernelScene::new(&s).unwrap();
+    /// let mesh = k.mesh();
+    /// assert!(mesh.validate().is_ok());
+    /// assert_eq!(mesh.positions[7], Vec3::from_f64(s.mesh.positions[7]).unwrap());
+    /// assert_eq!(mesh.indices[7].map(u32::from), s.mesh.indices[7]);
+    /// ```
     pub fn mesh(&self) -> Mesh<'_> {
         Mesh::new(&self.positions, &self.indices).with_normals(&self.normals)
     }
@@ -190,6 +242,20 @@ impl KernelScene {
     /// Renders into `target` (after clearing it and `depth` when the scene
     /// has a depth test). `cache` needs one slot per vertex; `depth` one
     /// `u16` per pixel if the scene has a depth test.
+    ///
+    /// ```
+    /// use fixshade::{framebuffer::Framebuffer, render::{CachedVertex, RenderError}};
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let (mut px, mut depth) = ([0u16; 32 * 24], [0u16; 32 * 24]);
+    /// let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
+    /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
+    /// let stats = k.render(&mut fb, &mut depth, &mut cache).unwrap();
+    /// assert!(stats.pixels > 100);
+    /// assert_eq!(fb.pixel(0, 0), Some(k.background)); // cleared, not drawn
+    /// let short = k.render(&mut fb, &mut depth[..100], &mut cache);
+    /// assert_eq!(short, Err(RenderError::DepthTooSmall));
+    /// ```
     pub fn render<T: DrawTarget<Color = Rgb565>>(
         &self,
         target: &mut T,
@@ -203,6 +269,19 @@ impl KernelScene {
 
     /// As [`KernelScene::render`], into a [`Framebuffer`] through the
     /// kernel's framebuffer fast path.
+    ///
+    /// ```
+    /// use fixshade::{framebuffer::Framebuffer, render::CachedVertex};
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let frame = k.render_frame().unwrap(); // through `render`
+    /// let (mut px, mut depth) = ([0u16; 32 * 24], [0u16; 32 * 24]);
+    /// let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
+    /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
+    /// let stats = k.render_framebuffer(&mut fb, &mut depth, &mut cache).unwrap();
+    /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
+    /// assert_eq!(stats, frame.stats);
+    /// ```
     pub fn render_framebuffer(
         &self,
         fb: &mut Framebuffer,
@@ -299,6 +378,21 @@ impl KernelScene {
     /// has a depth test, `depth` (as many values). `vertices`: `Some` cache
     /// of one [`BandVertex`] per vertex ([`Cached`] mode), or `None`
     /// ([`Recomputed`]). The pixels are those of [`KernelScene::render`].
+    ///
+    /// ```
+    /// use fixshade::{band::BandVertex, framebuffer::Framebuffer};
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let frame = k.render_frame().unwrap(); // through `render`
+    /// let mut px = [0u16; 32 * 24];
+    /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
+    /// let (mut colour, mut depth) = ([0u16; 32 * 5], [0u16; 32 * 5]); // bands of 5 rows
+    /// let mut vertices = vec![BandVertex::default(); k.mesh().positions.len()];
+    /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, Some(&mut vertices)).unwrap();
+    /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
+    /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, None).unwrap();
+    /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
+    /// ```
     pub fn render_bands<T: DrawTarget<Color = Rgb565>>(
         &self,
         target: &mut T,
@@ -321,6 +415,17 @@ impl KernelScene {
     }
 
     /// Renders into fresh buffers and records which pixels were drawn.
+    ///
+    /// ```
+    /// use fixshade::{error_measure::compare, reference::render, scene_kernel::KernelScene};
+    /// use fixshade::standard_scenes::sphere_scene;
+    /// let scene = sphere_scene(32, 24, 12, 6);
+    /// let frame = KernelScene::new(&scene).unwrap().render_frame().unwrap();
+    /// let e = compare(&frame.pixels, &frame.covered, &render(&scene).unwrap());
+    /// assert!(e.covered_both > 100);
+    /// assert!(e.max_error.iter().all(|&m| m <= 1), "{e}"); // the kernel's 1 LSB bound
+    /// assert!(e.coverage_mismatch_share <= 0.001, "{e}");
+    /// ```
     pub fn render_frame(&self) -> Result<KernelFrame, RenderError<core::convert::Infallible>> {
         let (w, h) = (self.width, self.height);
         let n = w as usize * h as usize;
@@ -413,6 +518,18 @@ fn point(p: [f64; 3], d: [f64; 3], s: [f64; 3], a: [f64; 3]) -> Result<PointLigh
 
 /// A kernel frame: raw RGB565 pixels, which pixels the kernel drew, and
 /// the draw counts.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::IntoStorage;
+/// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+/// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+/// let f = k.render_frame().unwrap();
+/// assert_eq!((f.width, f.height, f.pixels.len()), (32, 24, 32 * 24));
+/// let covered = f.covered.iter().filter(|&&c| c).count();
+/// assert_eq!(covered, f.stats.pixels as usize); // a convex mesh: no pixel sent twice
+/// let bg = k.background.into_storage();
+/// assert!(f.pixels.iter().zip(&f.covered).all(|(&p, &c)| c || p == bg));
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct KernelFrame {
     /// Width.
@@ -429,6 +546,20 @@ pub struct KernelFrame {
 
 /// A framebuffer that also records which pixels were written (through
 /// `fill_contiguous`, the only way the renderer writes).
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+/// use embedded_graphics::primitives::{PrimitiveStyle, Rectangle};
+/// use fixshade::{framebuffer::Framebuffer, scene_kernel::CoverageTarget};
+/// let (mut px, mut covered) = ([0u16; 4 * 3], [false; 4 * 3]);
+/// let inner = Framebuffer::new(&mut px, 4, 3).unwrap();
+/// let mut t = CoverageTarget { inner, covered: &mut covered, width: 4 };
+/// let square = Rectangle::new(Point::new(1, 1), Size::new(2, 2));
+/// square.into_styled(PrimitiveStyle::with_fill(Rgb565::RED)).draw(&mut t).unwrap();
+/// t.clear(Rgb565::BLUE).unwrap(); // not recorded
+/// assert_eq!(covered.iter().filter(|&&c| c).count(), 4);
+/// assert!(covered[4 + 1] && !covered[0]);
+/// ```
 pub struct CoverageTarget<'a, 'b> {
     /// The framebuffer.
     pub inner: Framebuffer<'a>,

@@ -187,6 +187,15 @@ impl Exponent {
     }
 
     /// As [`Exponent::from_f32`], from an `f64`.
+    ///
+    /// ```
+    /// use fixshade::{vector::FormatError, Exponent};
+    /// assert_eq!(Exponent::from_f64(10.25), Exponent::from_f32(10.25));
+    /// assert_eq!(Exponent::from_f64(1e-300).unwrap().to_bits(), 1); // non-zero stays non-zero
+    /// assert_eq!(Exponent::from_f64(-0.0), Ok(Exponent::ZERO));
+    /// assert_eq!(Exponent::from_f64(f64::INFINITY), Err(FormatError::NotFinite));
+    /// assert_eq!(Exponent::from_f64(4096.001), Err(FormatError::OutOfRange));
+    /// ```
     pub fn from_f64(n: f64) -> Result<Exponent, FormatError> {
         if !n.is_finite() {
             return Err(FormatError::NotFinite);

@@ -25,11 +25,29 @@ use crate::scene_desc::{
 };
 
 /// The standard size of the report's frames.
+///
+/// ```
+/// use fixshade::standard_scenes::{s1, HEIGHT, WIDTH};
+/// assert_eq!(WIDTH * 3, HEIGHT * 4); // 320 × 240, 4:3
+/// assert_eq!(s1(WIDTH, HEIGHT).width, WIDTH);
+/// ```
 pub const WIDTH: u32 = 320;
 /// The standard size of the report's frames.
+///
+/// ```
+/// use fixshade::standard_scenes::{s2, HEIGHT, WIDTH};
+/// let quad = s2(WIDTH, HEIGHT).mesh; // as wide as the viewport's aspect ratio
+/// assert_eq!(quad.positions[1], [WIDTH as f64 / HEIGHT as f64, 1.0, 0.0]);
+/// ```
 pub const HEIGHT: u32 = 240;
 
 /// The bunny, shipped in tests/data.
+///
+/// ```
+/// let bunny = fixshade::standard_scenes::bunny_mesh();
+/// assert_eq!((bunny.positions.len(), bunny.indices.len()), (1839, 3674));
+/// assert!(bunny.normals.is_none()); // the renderers derive them
+/// ```
 pub fn bunny_mesh() -> MeshDesc {
     generate::load_obj(include_str!("../tests/data/bunny.obj")).expect("bunny parses")
 }
@@ -37,6 +55,19 @@ pub fn bunny_mesh() -> MeshDesc {
 /// The sphere scene of S1 and S3 with `lon × lat` segments: Gouraud,
 /// depth and culling, one directional light towards (1, 1, 1), Blinn–Phong,
 /// infinite viewer.
+///
+/// ```
+/// use fixshade::{reference::render, scene_desc::*, standard_scenes::sphere_scene};
+/// let s = sphere_scene(32, 32, 12, 6);
+/// assert_eq!(s.mesh.indices.len(), 12 * (2 * 6 - 2));
+/// assert_eq!((s.shading, s.specular_model), (Shading::Gouraud, SpecularModel::Blinn));
+/// assert!(s.depth && s.cull && s.viewer == Viewer::Infinite);
+/// assert_eq!(s.lights, [LightDesc::directional([1.0, 1.0, 1.0])]);
+/// let frame = render(&s).unwrap();
+/// let (lit, dark) = (frame.pixel(20, 12).unwrap(), frame.pixel(12, 20).unwrap());
+/// assert!(lit[0] > dark[0]); // brighter towards the upper right, where the light is
+/// assert_eq!(frame.pixel(0, 0), None);
+/// ```
 pub fn sphere_scene(width: u32, height: u32, lon: u32, lat: u32) -> SceneDesc {
     let camera = CameraDesc {
         eye: [0.0, 0.0, 3.0],
@@ -67,6 +98,16 @@ pub fn sphere_scene(width: u32, height: u32, lon: u32, lat: u32) -> SceneDesc {
 }
 
 /// S4: the bunny with a point light and a spot light, Phong shading.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, Shading, Viewer};
+/// use fixshade::standard_scenes::s4;
+/// let s = s4(64, 48);
+/// assert!(matches!(s.lights[..], [LightDesc::Point { .. }, LightDesc::Spot { .. }]));
+/// assert_eq!((s.shading, s.viewer), (Shading::Phong, Viewer::Local));
+/// assert_eq!(s.mesh.indices.len(), 3674);
+/// assert!(s.validate().is_ok());
+/// ```
 pub fn s4(width: u32, height: u32) -> SceneDesc {
     let camera = CameraDesc {
         eye: [0.0, 5.0, 16.0],
@@ -109,17 +150,42 @@ pub fn s4(width: u32, height: u32) -> SceneDesc {
 }
 
 /// S1: the sphere 48 × 24.
+///
+/// ```
+/// use fixshade::standard_scenes::{s1, sphere_scene};
+/// let s = s1(64, 48);
+/// assert_eq!(s, sphere_scene(64, 48, 48, 24));
+/// assert_eq!(s.mesh.indices.len(), 48 * (2 * 24 - 2)); // 2208 triangles
+/// ```
 pub fn s1(width: u32, height: u32) -> SceneDesc {
     sphere_scene(width, height, 48, 24)
 }
 
 /// S3: the sphere 192 × 96.
+///
+/// ```
+/// use fixshade::standard_scenes::{s3, HEIGHT, WIDTH};
+/// let s = s3(WIDTH, HEIGHT);
+/// assert_eq!(s.mesh.indices.len(), 36_480); // 192 · (2 · 96 − 2)
+/// assert_eq!(s.mesh.positions.len(), 193 * 97);
+/// ```
 pub fn s3(width: u32, height: u32) -> SceneDesc {
     sphere_scene(width, height, 192, 96)
 }
 
 /// S2: a quad covering the whole viewport, red, green, blue and white at
 /// its corners, Gouraud, no depth test (see the module docs).
+///
+/// ```
+/// use fixshade::{reference::render, standard_scenes::s2};
+/// let frame = render(&s2(8, 6)).unwrap();
+/// assert_eq!(frame.covered_count(), 8 * 6); // the whole viewport
+/// let near = |x, y, want: [f64; 3]| {
+///     frame.pixel(x, y).unwrap().iter().zip(want).all(|(c, w)| (c - w).abs() < 0.2)
+/// };
+/// assert!(near(0, 0, [1.0, 0.0, 0.0]) && near(7, 0, [0.0, 1.0, 0.0]));
+/// assert!(near(7, 5, [0.0, 0.0, 1.0]) && near(0, 5, [1.0, 1.0, 1.0]));
+/// ```
 pub fn s2(width: u32, height: u32) -> SceneDesc {
     let aspect = width.max(1) as f64 / height.max(1) as f64;
     let camera = CameraDesc {
@@ -180,6 +246,15 @@ pub fn s2(width: u32, height: u32) -> SceneDesc {
 }
 
 /// The four standard scenes at the standard size, with their names.
+///
+/// ```
+/// use fixshade::standard_scenes::{all, HEIGHT, WIDTH};
+/// let scenes = all();
+/// let names: Vec<_> = scenes.iter().map(|(name, _)| *name).collect();
+/// assert_eq!(names, ["S1", "S2", "S3", "S4"]);
+/// assert!(scenes.iter().all(|(_, s)| (s.width, s.height) == (WIDTH, HEIGHT)));
+/// assert!(scenes.iter().all(|(_, s)| s.validate().is_ok()));
+/// ```
 pub fn all() -> [(&'static str, SceneDesc); 4] {
     [
         ("S1", s1(WIDTH, HEIGHT)),

@@ -31,9 +31,23 @@ use crate::widening::mul_i32;
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
+///
+/// ```
+/// use fixshade::vector::UNIT_ONE;
+/// use fixshade::Unit3;
+/// assert_eq!(Unit3::X.to_bits(), [UNIT_ONE, 0, 0]);
+/// assert_eq!(Unit3::X.to_fixed()[0].to_num::<f32>(), 1.0);
+/// ```
 pub const UNIT_ONE: i16 = 1 << 14;
 
 /// Fractional bits of the `I8F24` position format.
+///
+/// ```
+/// use fixshade::vector::COORD_FRAC;
+/// use fixshade::Vec3;
+/// let half = Vec3::from_f32(0.5, 0.0, 0.0).unwrap();
+/// assert_eq!(half.to_bits()[0], 1 << (COORD_FRAC - 1));
+/// ```
 pub const COORD_FRAC: u32 = 24;
 
 /// A position or displacement, three `I8F24` components.
@@ -57,6 +71,13 @@ pub struct Vec3 {
 }
 
 /// Why a float could not become a fixed-point value.
+///
+/// ```
+/// use fixshade::vector::{coord_from_f32, FormatError};
+/// assert_eq!(coord_from_f32(f32::NAN), Err(FormatError::NotFinite));
+/// assert_eq!(coord_from_f32(128.0), Err(FormatError::OutOfRange));
+/// assert_eq!(FormatError::OutOfRange.to_string(), "value outside the fixed-point range");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum FormatError {
     /// The value was NaN or infinite.
@@ -76,11 +97,25 @@ impl core::fmt::Display for FormatError {
 
 /// Converts an `f32` to `I8F24`, rounding to nearest; errors for NaN, ±∞ and
 /// values outside [−128, 128).
+///
+/// ```
+/// use fixshade::vector::coord_from_f32;
+/// assert_eq!(coord_from_f32(-128.0).unwrap().to_bits(), i32::MIN);
+/// assert_eq!(coord_from_f32(1.5).unwrap().to_num::<f32>(), 1.5);
+/// assert!(coord_from_f32(f32::INFINITY).is_err());
+/// ```
 pub fn coord_from_f32(v: f32) -> Result<I8F24, FormatError> {
     coord_from_f64(v as f64)
 }
 
 /// As [`coord_from_f32`], from an `f64`.
+///
+/// ```
+/// use fixshade::vector::coord_from_f64;
+/// // Rounded to the nearest 2^-24.
+/// assert_eq!(coord_from_f64(0.6 / 16_777_216.0).unwrap().to_bits(), 1);
+/// assert!(coord_from_f64(127.999_999_99).is_err()); // rounds to 128
+/// ```
 pub fn coord_from_f64(v: f64) -> Result<I8F24, FormatError> {
     if !v.is_finite() {
         return Err(FormatError::NotFinite);
@@ -90,6 +125,12 @@ pub fn coord_from_f64(v: f64) -> Result<I8F24, FormatError> {
 
 impl Vec3 {
     /// The origin.
+    ///
+    /// ```
+    /// use fixshade::Vec3;
+    /// assert_eq!(Vec3::ZERO, Vec3::default());
+    /// assert_eq!(Vec3::ZERO.to_bits(), [0; 3]);
+    /// ```
     pub const ZERO: Vec3 = Vec3::from_bits(0, 0, 0);
 
     /// Builds a vector from raw `I8F24` bits (usable in `const` and `static`
@@ -109,6 +150,13 @@ impl Vec3 {
     }
 
     /// Builds a vector from floats; see [`coord_from_f32`] for the errors.
+    ///
+    /// ```
+    /// use fixshade::vector::FormatError;
+    /// use fixshade::Vec3;
+    /// assert_eq!(Vec3::from_f32(1.0, 2.0, 3.0).unwrap().to_f32(), [1.0, 2.0, 3.0]);
+    /// assert_eq!(Vec3::from_f32(0.0, f32::NAN, 0.0), Err(FormatError::NotFinite));
+    /// ```
     pub fn from_f32(x: f32, y: f32, z: f32) -> Result<Self, FormatError> {
         Ok(Vec3 {
             x: coord_from_f32(x)?,
@@ -118,6 +166,13 @@ impl Vec3 {
     }
 
     /// Builds a vector from `f64`s; see [`coord_from_f64`].
+    ///
+    /// ```
+    /// use fixshade::vector::FormatError;
+    /// use fixshade::Vec3;
+    /// assert_eq!(Vec3::from_f64([-1.0, 0.5, 127.0]).unwrap().to_f32(), [-1.0, 0.5, 127.0]);
+    /// assert_eq!(Vec3::from_f64([0.0, 0.0, -129.0]), Err(FormatError::OutOfRange));
+    /// ```
     pub fn from_f64(v: [f64; 3]) -> Result<Self, FormatError> {
         Ok(Vec3 {
             x: coord_from_f64(v[0])?,
@@ -127,11 +182,21 @@ impl Vec3 {
     }
 
     /// The raw `I8F24` bits of the three components.
+    ///
+    /// ```
+    /// use fixshade::Vec3;
+    /// assert_eq!(Vec3::from_f32(1.0, -1.0, 0.0).unwrap().to_bits(), [1 << 24, -(1 << 24), 0]);
+    /// ```
     pub const fn to_bits(self) -> [i32; 3] {
         [self.x.to_bits(), self.y.to_bits(), self.z.to_bits()]
     }
 
     /// The components as `f32` (host-side inspection).
+    ///
+    /// ```
+    /// use fixshade::Vec3;
+    /// assert_eq!(Vec3::from_bits(1, 0, -(3 << 22)).to_f32(), [2f32.powi(-24), 0.0, -0.75]);
+    /// ```
     pub fn to_f32(self) -> [f32; 3] {
         [self.x.to_num(), self.y.to_num(), self.z.to_num()]
     }
@@ -157,24 +222,53 @@ pub struct Unit3 {
 
 impl Unit3 {
     /// +X.
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// assert_eq!(Unit3::X.dot(Unit3::Y), 0);
+    /// assert_eq!(Unit3::X.dot(Unit3::X), 1 << 28);
+    /// ```
     pub const X: Unit3 = Unit3 {
         c: [UNIT_ONE, 0, 0],
     };
     /// +Y.
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// assert_eq!(Unit3::Y.to_bits(), [0, 1 << 14, 0]);
+    /// ```
     pub const Y: Unit3 = Unit3 {
         c: [0, UNIT_ONE, 0],
     };
     /// +Z (the infinite viewer's direction in eye space).
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// assert_eq!(Unit3::Z.dot(Unit3::Z.neg()), -(1 << 28));
+    /// ```
     pub const Z: Unit3 = Unit3 {
         c: [0, 0, UNIT_ONE],
     };
     /// The zero vector: what normalising a zero-length vector gives in the
     /// places where SPEC.md makes the term it feeds 0.
+    ///
+    /// ```
+    /// use fixshade::normalize::normalize;
+    /// use fixshade::Unit3;
+    /// assert_eq!(normalize([0, 0, 0]), None);
+    /// assert!(Unit3::ZERO.is_zero() && Unit3::ZERO.dot(Unit3::X) == 0);
+    /// ```
     pub const ZERO: Unit3 = Unit3 { c: [0, 0, 0] };
 
     /// Builds a unit vector from raw `I2F14` bits, clamping each component
     /// to [−2¹⁴, 2¹⁴]. The caller is responsible for the length being 1; the
     /// clamp only guarantees the overflow invariant.
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// let u = Unit3::new_clamped(i16::MAX, i16::MIN, 100);
+    /// assert_eq!(u.to_bits(), [1 << 14, -(1 << 14), 100]);
+    /// ```
     pub const fn new_clamped(x: i16, y: i16, z: i16) -> Self {
         const fn cl(v: i16) -> i16 {
             if v > UNIT_ONE {
@@ -191,22 +285,46 @@ impl Unit3 {
     }
 
     /// The raw `I2F14` bits.
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// assert_eq!(Unit3::new_clamped(0, -8192, 0).to_bits(), [0, -8192, 0]);
+    /// ```
     pub const fn to_bits(self) -> [i16; 3] {
         self.c
     }
 
     /// The components as fixed-point numbers.
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// let f = Unit3::new_clamped(0, -8192, 1 << 14).to_fixed();
+    /// assert_eq!(f.map(|c| c.to_num::<f32>()), [0.0, -0.5, 1.0]);
+    /// ```
     pub fn to_fixed(self) -> [I2F14; 3] {
         self.c.map(I2F14::from_bits)
     }
 
     /// Whether this is the zero vector (a normalisation of nothing).
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// assert!(Unit3::ZERO.is_zero());
+    /// assert!(!Unit3::new_clamped(0, 0, 1).is_zero());
+    /// ```
     pub const fn is_zero(self) -> bool {
         self.c[0] == 0 && self.c[1] == 0 && self.c[2] == 0
     }
 
     /// The opposite direction (the invariant is symmetric, so this cannot
     /// overflow).
+    ///
+    /// ```
+    /// use fixshade::Unit3;
+    /// let u = Unit3::new_clamped(-(1 << 14), 5, 0);
+    /// assert_eq!(u.neg().to_bits(), [1 << 14, -5, 0]);
+    /// assert_eq!(u.neg().neg(), u);
+    /// ```
     pub const fn neg(self) -> Self {
         Unit3 {
             c: [-self.c[0], -self.c[1], -self.c[2]],
@@ -216,6 +334,14 @@ impl Unit3 {
     /// Dot product in `Q.28` (1.0 = 2²⁸). Three 16 × 16 → 32-bit products;
     /// no overflow by the invariant (see the module docs).
     #[inline]
+    ///
+    /// ```
+    /// use fixshade::normalize::normalize;
+    /// use fixshade::Unit3;
+    /// let d = normalize([1, 1, 0]).unwrap(); // 45° from X
+    /// let cos = d.dot(Unit3::X) as f64 / (1u32 << 28) as f64;
+    /// assert!((cos - 0.5f64.sqrt()).abs() < 1e-4);
+    /// ```
     pub const fn dot(self, o: Unit3) -> i32 {
         self.c[0] as i32 * o.c[0] as i32
             + self.c[1] as i32 * o.c[1] as i32
@@ -230,6 +356,15 @@ impl Unit3 {
     /// steep powers (`x^2048`) need. Each difference is at most 2¹⁵, each
     /// square 2³⁰, the sum of three below 2³² (`u32`), halved below 2³¹.
     #[inline]
+    ///
+    /// ```
+    /// use fixshade::normalize::normalize;
+    /// use fixshade::Unit3;
+    /// let a = normalize([1 << 20, 1, 0]).unwrap(); // about 2^-20 rad from X
+    /// assert_eq!(Unit3::X.half_dist_sq(Unit3::X), 0);
+    /// assert_eq!(Unit3::X.half_dist_sq(Unit3::X.neg()), 2 << 28); // 1 − (−1)
+    /// assert_eq!(Unit3::X.half_dist_sq(a) as i64, (1 << 28) - Unit3::X.dot(a) as i64);
+    /// ```
     pub const fn half_dist_sq(self, o: Unit3) -> u32 {
         let dx = (self.c[0] as i32 - o.c[0] as i32).unsigned_abs();
         let dy = (self.c[1] as i32 - o.c[1] as i32).unsigned_abs();
@@ -299,6 +434,13 @@ impl Default for Mat4 {
 
 impl Mat4 {
     /// The identity.
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let p = Vec3::from_f32(1.5, -2.0, 3.25).unwrap();
+    /// assert_eq!(Mat4::IDENTITY.transform_point(p), p);
+    /// assert_eq!(Mat4::IDENTITY.mul(&Mat4::IDENTITY), Mat4::IDENTITY);
+    /// ```
     pub const IDENTITY: Mat4 = Mat4 {
         m: [
             [ONE24, 0, 0, 0],
@@ -309,6 +451,14 @@ impl Mat4 {
     };
 
     /// A translation by `t`.
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let t = Mat4::translation(Vec3::from_f32(1.0, 2.0, 3.0).unwrap());
+    /// let p = t.transform_point(Vec3::from_f32(0.5, 0.5, 0.5).unwrap());
+    /// assert_eq!(p.to_f32(), [1.5, 2.5, 3.5]);
+    /// assert_eq!(t.transform_dir_wide([1 << 14, 0, 0]), [1 << 38, 0, 0]); // directions ignore it
+    /// ```
     pub const fn translation(t: Vec3) -> Mat4 {
         let mut m = Mat4::IDENTITY;
         m.m[0][3] = t.x.to_bits();
@@ -319,6 +469,18 @@ impl Mat4 {
 
     /// Builds a matrix from `f32` entries (row-major); errors as
     /// [`coord_from_f32`].
+    ///
+    /// ```
+    /// use fixshade::vector::FormatError;
+    /// use fixshade::Mat4;
+    /// let mut rows = [[0.0; 4]; 4];
+    /// for i in 0..4 {
+    ///     rows[i][i] = 1.0;
+    /// }
+    /// assert_eq!(Mat4::from_f32(rows), Ok(Mat4::IDENTITY));
+    /// rows[0][3] = 500.0;
+    /// assert_eq!(Mat4::from_f32(rows), Err(FormatError::OutOfRange));
+    /// ```
     pub fn from_f32(rows: [[f32; 4]; 4]) -> Result<Mat4, FormatError> {
         Mat4::from_f64(rows.map(|r| r.map(f64::from)))
     }
@@ -385,6 +547,15 @@ impl Mat4 {
     }
 
     /// A uniform scale by `s` (`I8F24`, saturating).
+    ///
+    /// ```
+    /// use fixed::types::I8F24;
+    /// use fixshade::{Mat4, Vec3};
+    /// let twice = Mat4::scale(I8F24::from_num(2));
+    /// let p = twice.transform_point(Vec3::from_f32(1.0, -3.0, 100.0).unwrap());
+    /// assert_eq!(p.to_f32()[..2], [2.0, -6.0]);
+    /// assert_eq!(p.z.to_bits(), i32::MAX); // 200 saturates to just below 128
+    /// ```
     pub const fn scale(s: I8F24) -> Mat4 {
         let v = s.to_bits();
         Mat4 {
@@ -394,6 +565,16 @@ impl Mat4 {
 
     /// Builds a matrix from `f64` entries (row-major), rounding to nearest;
     /// errors as [`coord_from_f32`].
+    ///
+    /// ```
+    /// use fixshade::vector::FormatError;
+    /// use fixshade::Mat4;
+    /// let mut rows = [[0.0; 4]; 4];
+    /// rows[3][3] = 1.0;
+    /// assert_eq!(Mat4::from_f64(rows).unwrap().m[3][3], 1 << 24);
+    /// rows[1][1] = f64::NAN;
+    /// assert_eq!(Mat4::from_f64(rows), Err(FormatError::NotFinite));
+    /// ```
     pub fn from_f64(rows: [[f64; 4]; 4]) -> Result<Mat4, FormatError> {
         let mut m = [[0i32; 4]; 4];
         for (r, row) in rows.iter().enumerate() {
@@ -405,6 +586,20 @@ impl Mat4 {
     }
 
     /// The product `self · o`, saturating each entry to `I8F24`.
+    ///
+    /// ```
+    /// use fixed::types::I8F24;
+    /// use fixshade::{Mat4, Vec3};
+    /// let t = Mat4::translation(Vec3::from_f32(1.0, 0.0, 0.0).unwrap());
+    /// let s = Mat4::scale(I8F24::from_num(3));
+    /// let p = Vec3::from_f32(1.0, 1.0, 1.0).unwrap();
+    /// // `a.mul(&b)` applies `b` first.
+    /// assert_eq!(t.mul(&s).transform_point(p).to_f32(), [4.0, 3.0, 3.0]);
+    /// assert_eq!(s.mul(&t).transform_point(p).to_f32(), [6.0, 3.0, 3.0]);
+    /// // Entries saturate: 100 · 100 is beyond I8F24.
+    /// let big = Mat4::scale(I8F24::from_num(100));
+    /// assert_eq!(big.mul(&big).m[0][0], i32::MAX);
+    /// ```
     pub fn mul(&self, o: &Mat4) -> Mat4 {
         let mut m = [[0i32; 4]; 4];
         for (r, row) in m.iter_mut().enumerate() {
@@ -424,6 +619,21 @@ impl Mat4 {
     /// Applies the affine part (rows 0..3) to a point (w = 1), saturating the
     /// result to `I8F24`.
     #[inline]
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let m = Mat4::from_f32([
+    ///     [0.0, -1.0, 0.0, 2.0],
+    ///     [1.0, 0.0, 0.0, 0.0],
+    ///     [0.0, 0.0, 1.0, 0.0],
+    ///     [0.0, 0.0, 0.0, 1.0],
+    /// ]).unwrap(); // a quarter turn about z, then 2 along x
+    /// let p = m.transform_point(Vec3::from_f32(1.0, 0.0, 5.0).unwrap());
+    /// assert_eq!(p.to_f32(), [2.0, 1.0, 5.0]);
+    /// // Far outside the range, the result saturates instead of wrapping.
+    /// let q = m.transform_point(Vec3::from_f32(0.0, -127.0, 0.0).unwrap());
+    /// assert_eq!(q.x.to_bits(), i32::MAX);
+    /// ```
     pub fn transform_point(&self, p: Vec3) -> Vec3 {
         let b = p.to_bits();
         let row = |r: usize| {
@@ -444,6 +654,14 @@ impl Mat4 {
     /// each product is below 2⁶², three of them below 2⁶³·1.5, summed
     /// saturating).
     #[inline]
+    ///
+    /// ```
+    /// use fixed::types::I8F24;
+    /// use fixshade::Mat4;
+    /// // A scale by 2 doubles the input's raw units, times 2^24.
+    /// let twice = Mat4::scale(I8F24::from_num(2));
+    /// assert_eq!(twice.transform_dir_wide([3, -5, 0]), [6 << 24, -10 << 24, 0]);
+    /// ```
     pub fn transform_dir_wide(&self, d: [i32; 3]) -> [i64; 3] {
         let row = |r: usize| {
             let m = &self.m[r];
@@ -468,6 +686,19 @@ pub(crate) fn sat_shift24(acc: i64) -> i32 {
 /// because the result is renormalised.
 ///
 /// Returns `None` for a singular matrix.
+///
+/// ```
+/// use fixed::types::I8F24;
+/// use fixshade::vector::normal_matrix;
+/// use fixshade::Mat4;
+/// // A non-uniform scale: normals scale by the inverse (x by 1/2 against z by 1).
+/// let m = Mat4::from_f32([
+///     [2.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0],
+/// ]).unwrap();
+/// let n = normal_matrix(&m).unwrap();
+/// assert_eq!(n[0][0] * 2, n[2][2]);
+/// assert_eq!(normal_matrix(&Mat4::scale(I8F24::ZERO)), None); // singular
+/// ```
 pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     // Cofactor matrix of the 3x3 part = det · inverse-transpose. Entries of
     // m are < 2^31 raw; a 2x2 minor needs i128 to stay exact.

@@ -23,6 +23,19 @@ use super::math::{add, dot, length, normalize, scale, sub, transform_dir, transf
 use crate::scene_desc::{LightDesc, MaterialDesc, SpecularModel, Viewer};
 
 /// A light in eye space, ready for [`illuminate`]. Built by [`eye_lights`].
+///
+/// ```
+/// use fixshade::reference::{eye_lights, look_at, EyeLight};
+/// use fixshade::scene_desc::{LightDesc, DEFAULT_ATTENUATION, WHITE};
+/// let view = look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0]); // a shift by −5 along Z
+/// let spot = LightDesc::Spot { position: [0.0, 2.0, 0.0], axis: [0.0, -3.0, 0.0],
+///     cutoff_deg: 90.0, exponent: 1.0, diffuse: WHITE, specular: WHITE,
+///     attenuation: DEFAULT_ATTENUATION };
+/// let lights = eye_lights(&[spot], &view);
+/// let [EyeLight::Spot { position, axis, cos_cutoff, .. }] = &lights[..] else { panic!() };
+/// assert_eq!(*position, [0.0, 2.0, -5.0]);
+/// assert_eq!((*axis, *cos_cutoff), ([0.0, -1.0, 0.0], 0.0)); // unit axis; cos 90° is exactly 0
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum EyeLight {
     /// A light at infinity.
@@ -65,9 +78,35 @@ pub enum EyeLight {
 }
 
 /// Lights already transformed into eye space (what [`eye_lights`] returns).
+///
+/// ```
+/// use fixshade::reference::{eye_lights, look_at, EyeLight, EyeLights};
+/// use fixshade::scene_desc::{LightDesc, DEFAULT_ATTENUATION};
+/// let view = look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0]);
+/// let (edge_u, edge_v) = ([2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+/// let area = LightDesc::Area { center: [0.0; 3], edge_u, edge_v, samples_k: 2,
+///     diffuse: [1.0; 3], specular: [0.5; 3], attenuation: DEFAULT_ATTENUATION };
+/// let lights: EyeLights = eye_lights(&[area], &view);
+/// assert_eq!(lights.len(), 2 * 2); // k × k point lights
+/// let EyeLight::Point { position, diffuse, .. } = &lights[0] else { panic!() };
+/// assert_eq!((*position, *diffuse), ([-0.5, -0.5, -5.0], [0.25; 3])); // a cell centre, 1/k²
+/// ```
 pub type EyeLights = Vec<EyeLight>;
 
 /// Everything [`illuminate`] needs besides the point and the normal.
+///
+/// ```
+/// use fixshade::reference::{illuminate, EyeLight, LightingModel};
+/// use fixshade::scene_desc::{MaterialDesc, SpecularModel, Viewer};
+/// let material = MaterialDesc { emission: [0.1, 0.0, 0.0], ..MaterialDesc::default() };
+/// let lights = [EyeLight::Directional { to_light: [0.0, 0.0, 1.0], diffuse: [1.0; 3],
+///     specular: [1.0; 3] }];
+/// let m = LightingModel { material: &material, global_ambient: [0.5; 3], lights: &lights,
+///     specular_model: SpecularModel::Blinn, viewer: Viewer::Infinite };
+/// // A zero normal: E + A·Ka only (0.1 + 0.5 · 0.2 in red), no diffuse or specular.
+/// let c = illuminate(&m, [0.0, 0.0, -1.0], [0.0; 3]);
+/// assert!((c[0] - 0.2).abs() < 1e-12 && (c[1] - 0.1).abs() < 1e-12);
+/// ```
 #[derive(Clone, Debug)]
 pub struct LightingModel<'a> {
     /// The material.

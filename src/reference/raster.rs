@@ -71,6 +71,15 @@ pub struct RefFrame {
 
 impl RefFrame {
     /// The colour at `(x, y)`, `None` if not drawn or outside the frame.
+    ///
+    /// ```
+    /// use fixshade::reference::RefFrame;
+    /// let green = Some([0.0, 1.0, 0.0]);
+    /// let f = RefFrame { width: 2, height: 2, color: vec![None, None, green, None] };
+    /// assert_eq!(f.pixel(0, 1), Some([0.0, 1.0, 0.0])); // row-major: index 1 · 2 + 0
+    /// assert_eq!(f.pixel(1, 0), None); // not drawn
+    /// assert_eq!(f.pixel(2, 1), None); // outside
+    /// ```
     pub fn pixel(&self, x: u32, y: u32) -> Option<[f64; 3]> {
         if x >= self.width || y >= self.height {
             return None;
@@ -80,6 +89,14 @@ impl RefFrame {
     }
 
     /// Number of drawn pixels.
+    ///
+    /// ```
+    /// use fixshade::{reference::render, standard_scenes::sphere_scene};
+    /// let frame = render(&sphere_scene(16, 16, 12, 6)).unwrap();
+    /// let n = frame.covered_count();
+    /// assert!(n > 0 && n < 16 * 16); // the sphere, not the corners
+    /// assert_eq!(n, frame.color.iter().filter(|c| c.is_some()).count());
+    /// ```
     pub fn covered_count(&self) -> usize {
         self.color.iter().filter(|c| c.is_some()).count()
     }
