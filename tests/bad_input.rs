@@ -36,7 +36,6 @@ use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
 use fuzz_scene::CountingTarget;
 
 const NAN: f32 = f32::NAN;
-const INF: f32 = f32::INFINITY;
 const NON_FINITE: [f32; 3] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
 
 #[test]
