@@ -442,14 +442,40 @@ impl Recip {
     }
 
     /// As [`Recip::div`] for `|num| < 2⁶³`: [`Recip::div_i64_wide`] on
-    /// 64-bit targets, [`Recip::div_i64_limbs`] (the same value) on 32-bit
-    /// ones.
+    /// 64-bit targets; on 32-bit ones [`Recip::div_i64_narrow`] where it
+    /// applies (a numerator below 2³¹ and a shift below 64), else
+    /// [`Recip::div_i64_limbs`]; all three give the same value. (On x86-64
+    /// the narrow form measured dearer: callgrind S1 +1.5 %.)
     #[inline]
     fn div_i64(self, num: i64, up: u32) -> i128 {
+        let sh = self.sh - up;
         if cfg!(target_pointer_width = "64") {
             self.div_i64_wide(num, up)
+        } else if sh < 64 && num.unsigned_abs() < NARROW_NUM {
+            self.div_i64_narrow(num, sh) as i128
         } else {
             self.div_i64_limbs(num, up)
+        }
+    }
+
+    /// [`Recip::div_i64`] in 64-bit arithmetic, for `|num| < 2³¹` and a
+    /// shift `sh = self.sh − up` in `1 ..= 63` (`self.sh ≥ 32` and `up ≤ 4`
+    /// give `sh ≥ 28`): the magnitude's product `P = |num|·m < 2⁶³`
+    /// (`m ≤ 2³²`) plus the rounding term `h = 2^(sh−1) ≤ 2⁶²` stays below
+    /// 2⁶⁴, and, as in [`Recip::div_i64_limbs`], `−⌊(P + h − 1)/2^sh⌋` is
+    /// the negative numerator's quotient with the same rounding. One
+    /// 32 × 32 → 64-bit product (`m = 2³²` has a zero low word: then
+    /// `|num| · 2³²`) where the limb form takes two and `u128` sums.
+    #[inline]
+    fn div_i64_narrow(self, num: i64, sh: u32) -> i64 {
+        debug_assert!(num.unsigned_abs() < NARROW_NUM && (1..64).contains(&sh));
+        let (n, m) = (num.unsigned_abs(), self.m as u64);
+        let p = mul_u32(n as u32, m as u32) + if m >> 32 != 0 { n << 32 } else { 0 };
+        let h = 1u64 << (sh - 1);
+        if num >= 0 {
+            ((p + h) >> sh) as i64
+        } else {
+            -(((p + h - 1) >> sh) as i64)
         }
     }
 
@@ -488,6 +514,9 @@ impl Recip {
         (num * self.m as i128 + (1i128 << (sh - 1))) >> sh
     }
 }
+
+/// Numerators below this take [`Recip::div_i64_narrow`].
+const NARROW_NUM: u64 = 1 << 31;
 
 /// A triangle's scan conversion paused at a row: its edges there, the
 /// attribute values at the row's first column, and the rows it has left in
@@ -1213,7 +1242,7 @@ pub fn rasterize_rows<const N: usize>(
 
 #[cfg(test)]
 pub(crate) mod tests {
-    use super::{EdgeLine, Recip};
+    use super::{EdgeLine, Recip, NARROW_NUM};
 
     /// A xorshift generator: reproducible operands without a dependency.
     pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
@@ -1248,6 +1277,42 @@ pub(crate) mod tests {
             }
         }
         assert!(narrow > 100_000, "{narrow}");
+    }
+
+    /// The 64-bit quotient equals the 128-bit one wherever `div_i64`
+    /// takes it: numerators up to the bound (both signs), areas across
+    /// their range, both shifts, and the rounding ties.
+    #[test]
+    fn narrow_quotient_is_the_wide_one() {
+        let mut next = xorshift(0x6a09_e667_f3bc_c908);
+        let lim = NARROW_NUM as i64 - 1;
+        let mut nums = vec![0i64, 1, -1, lim, -lim, lim / 3, -(lim / 7)];
+        let mut areas = vec![1i64, 2, 3, 1 << 31, (1 << 31) + 1, (1 << 32) - 1, 1 << 32];
+        for _ in 0..3000 {
+            let n = (next() >> (34 + next() % 30)) as i64;
+            nums.push(if next() & 1 == 0 { n } else { -n });
+            areas.push((next() >> (4 + next() % 60)).max(1) as i64);
+        }
+        let mut narrow = 0;
+        for &a in &areas {
+            let r = Recip::new(a);
+            let ties = [1i64, 3, 5].map(|k| (k << r.sh.saturating_sub(33).min(28)).min(lim));
+            for &num in nums.iter().chain(&ties).chain(&ties.map(|t| -t)) {
+                for up in [0, 4] {
+                    let sh = r.sh - up;
+                    if sh < 64 {
+                        narrow += 1;
+                        assert_eq!(
+                            r.div_i64_narrow(num, sh) as i128,
+                            r.div_i64_wide(num, up),
+                            "a {a} num {num} up {up}"
+                        );
+                    }
+                    assert_eq!(r.div_i64(num, up), r.div_i64_wide(num, up));
+                }
+            }
+        }
+        assert!(narrow > 1_000_000, "{narrow}");
     }
 
     /// The two-limb quotient of 32-bit targets equals the 128-bit one, for
