@@ -516,7 +516,7 @@ impl Recip {
     }
 }
 
-/// Numerators below this take [`Recip::div_i64_narrow`].
+/// On 32-bit targets, numerators below this take [`Recip::div_i64_narrow`].
 const NARROW_NUM: u64 = 1 << 31;
 
 /// A triangle's scan conversion paused at a row: its edges there, the
@@ -1282,7 +1282,11 @@ pub(crate) mod tests {
 
     /// The 64-bit quotient equals the 128-bit one wherever `div_i64`
     /// takes it: numerators up to the bound (both signs), areas across
-    /// their range, both shifts, and the rounding ties.
+    /// their range, both shifts, and the rounding ties (exact ones for
+    /// power-of-two areas at `up = 0`). The last comparison checks the
+    /// dispatch only where `div_i64` can take the narrow form, on 32-bit
+    /// targets; on the host it compares the `i128` form with itself (the
+    /// firmware frames, byte-identical to the host's, exercise it there).
     #[test]
     fn narrow_quotient_is_the_wide_one() {
         let mut next = xorshift(0x6a09_e667_f3bc_c908);
