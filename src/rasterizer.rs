@@ -260,21 +260,23 @@ pub(crate) fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
 }
 
 /// The most pixel centres a triangle's box may hold for
-/// [`Triangle::setup_rows`] to test them one by one before the set-up.
-const TINY: i64 = 4;
+/// [`Triangle::setup_rows`] (and the whole-frame loop, before it lights the
+/// triangle) to test them one by one before the set-up.
+pub(crate) const TINY: i64 = 4;
 
-/// Whether the oriented triangle `v` (positive area) covers a pixel centre
-/// in columns `xs.0 ..= xs.1` of rows `ys.0 ..= ys.1`, by the rule the
-/// edge walk follows: `E = dx·(py − a.y) − dy·(px − a.x)` for each edge
-/// `a → b`, `E ≥ 0` on a left (`dy < 0`) or top (`dy = 0`, `dx > 0`) edge,
-/// `E > 0` on the others. The box lies within the vertices' box, so each
-/// factor is below 2²⁹ and each product below 2⁵⁸.
-fn covers_any<const N: usize>(v: [&RasterVertex<N>; 3], xs: (i64, i64), ys: (i64, i64)) -> bool {
+/// Whether the oriented triangle `v` (positions in 1/16 pixel, positive
+/// area) covers a pixel centre in columns `xs.0 ..= xs.1` of rows
+/// `ys.0 ..= ys.1`, by the rule the edge walk follows:
+/// `E = dx·(py − a.y) − dy·(px − a.x)` for each edge `a → b`, `E ≥ 0` on a
+/// left (`dy < 0`) or top (`dy = 0`, `dx > 0`) edge, `E > 0` on the others.
+/// The box lies within the vertices' box, so each factor is below 2²⁹ and
+/// each product below 2⁵⁸.
+pub(crate) fn covers_any(v: [(i64, i64); 3], xs: (i64, i64), ys: (i64, i64)) -> bool {
     let edges = [(0, 1), (1, 2), (2, 0)].map(|(a, b)| {
-        let (dx, dy) = (v[b].x - v[a].x, v[b].y - v[a].y);
+        let (dx, dy) = (v[b].0 - v[a].0, v[b].1 - v[a].1);
         // Inclusive edges admit E = 0: E + 1 > 0.
         let bias = (dy < 0 || (dy == 0 && dx > 0)) as i64;
-        (v[a].x, v[a].y, dx, dy, bias)
+        (v[a].0, v[a].1, dx, dy, bias)
     });
     (ys.0..=ys.1).any(|y| {
         (xs.0..=xs.1).any(|x| {
@@ -753,19 +755,24 @@ impl<'v, const N: usize> Triangle<'v, N> {
         if !(v.iter().all(RasterVertex::within_limits) && viewport.within_limits()) {
             return None;
         }
-        Self::setup_rows_within(v, viewport, rows, cull)
+        Self::setup_rows_within(v, viewport, rows, cull, false)
     }
 
     /// [`Triangle::setup_rows`] for vertices the caller knows to be within
     /// the limits (the renderer's, which it clamps when it snaps them): no
     /// check. Outside them a debug build may panic on overflow and a
-    /// release build may draw the wrong pixels of `viewport`.
+    /// release build may draw the wrong pixels of `viewport`. `tested`: skip
+    /// the test of a tiny box centre by centre (the caller has made it, as
+    /// the renderer does before it lights an unclipped triangle). The
+    /// pixels are the same either way: the test only spares the set-up of a
+    /// triangle that covers no centre.
     #[inline(always)]
     pub(crate) fn setup_rows_within(
         v: &'v [RasterVertex<N>; 3],
         viewport: ClipRect,
         rows: (i32, i32),
         cull: bool,
+        tested: bool,
     ) -> Option<Self> {
         debug_assert!(v.iter().all(RasterVertex::within_limits) && viewport.within_limits());
         let clip = viewport;
@@ -840,10 +847,11 @@ impl<'v, const N: usize> Triangle<'v, N> {
         // tested centre by centre before the set-up: a fifth of S3's
         // triangles that reach here cover none. (The box lies within the
         // vertices' box: each side below 2^26 pixels.)
-        if r_lo == y_lo
+        if !tested
+            && r_lo == y_lo
             && r_hi == y_end
             && mul_narrow(x_hi - x_lo + 1, r_hi - r_lo + 1) <= TINY
-            && !covers_any(v, (x_lo, x_hi), (r_lo, r_hi))
+            && !covers_any(v.map(|p| (p.x, p.y)), (x_lo, x_hi), (r_lo, r_hi))
         {
             return None;
         }

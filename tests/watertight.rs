@@ -621,6 +621,21 @@ proptest! {
         }
     }
 
+    /// Tiny triangles (a few pixels at most, either winding, some across
+    /// the target's edges), which the renderer tests centre by centre
+    /// before it lights them: exactly the oracle's pixels. One eye unit is
+    /// 16 pixels, so a position unit is 1/16 pixel, the snapping grid.
+    #[test]
+    fn tiny_triangles_match_oracle(
+        c in (-24i64..64 * 16 + 24, -24i64..64 * 16 + 24),
+        d in prop::collection::vec(p256(40), 3),
+    ) {
+        let o = Ortho { size: 64, ppu: 16 };
+        // Window (c.x, c.y) in 1/16 pixel is eye (c.x − 512, 512 − c.y).
+        let pos: Vec<P256> = d.iter().map(|q| (c.0 - 512 + q.0, 512 - c.1 + q.1)).collect();
+        assert_matches_oracle("tiny triangle", o, &pos, &[[0, 1, 2]]);
+    }
+
     /// Random triangles, partly or far off-screen, many pixels per eye
     /// unit: exactly the oracle's pixels, nothing outside the target.
     #[test]
