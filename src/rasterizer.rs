@@ -269,23 +269,41 @@ pub(crate) const TINY: i64 = 4;
 /// `ys.0 ..= ys.1`, by the rule the edge walk follows:
 /// `E = dx·(py − a.y) − dy·(px − a.x)` for each edge `a → b`, `E ≥ 0` on a
 /// left (`dy < 0`) or top (`dy = 0`, `dx > 0`) edge, `E > 0` on the others.
-/// The box lies within the vertices' box, so each factor is below 2²⁹ and
-/// each product below 2⁵⁸.
+///
+/// Each `E` is computed at the box's first centre and stepped from there
+/// (`−16·dy` a column, `16·dx` a row): the box lies within the vertices'
+/// box, so each factor is below 2²⁹, each product below 2⁵⁸, and `E` at
+/// any centre of the box or one step beyond it below 2⁶⁰ in magnitude.
+#[inline]
 pub(crate) fn covers_any(v: [(i64, i64); 3], xs: (i64, i64), ys: (i64, i64)) -> bool {
-    let edges = [(0, 1), (1, 2), (2, 0)].map(|(a, b)| {
-        let (dx, dy) = (v[b].0 - v[a].0, v[b].1 - v[a].1);
+    let (px, py) = (16 * xs.0 + 8, 16 * ys.0 + 8);
+    let mut row = [0i64; 3];
+    let mut step_x = [0i64; 3];
+    let mut step_y = [0i64; 3];
+    for k in 0..3 {
+        let (a, b) = (v[k], v[(k + 1) % 3]);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         // Inclusive edges admit E = 0: E + 1 > 0.
         let bias = (dy < 0 || (dy == 0 && dx > 0)) as i64;
-        (v[a].0, v[a].1, dx, dy, bias)
-    });
-    (ys.0..=ys.1).any(|y| {
-        (xs.0..=xs.1).any(|x| {
-            let (px, py) = (16 * x + 8, 16 * y + 8);
-            edges.iter().all(|&(ax, ay, dx, dy, bias)| {
-                mul_narrow(dx, py - ay) - mul_narrow(dy, px - ax) + bias > 0
-            })
-        })
-    })
+        row[k] = mul_narrow(dx, py - a.1) - mul_narrow(dy, px - a.0) + bias;
+        step_x[k] = -16 * dy;
+        step_y[k] = 16 * dx;
+    }
+    for _ in ys.0..=ys.1 {
+        let mut e = row;
+        for _ in xs.0..=xs.1 {
+            if e[0] > 0 && e[1] > 0 && e[2] > 0 {
+                return true;
+            }
+            for k in 0..3 {
+                e[k] += step_x[k];
+            }
+        }
+        for k in 0..3 {
+            row[k] += step_y[k];
+        }
+    }
+    false
 }
 
 /// One edge's bound on the span, stepped row by row without division.
