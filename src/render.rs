@@ -549,6 +549,9 @@ pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
     lighting: Lighting<S, V, L>,
     camera: Camera,
     modelview: Mat4,
+    /// Whether `modelview`'s point sums can never saturate
+    /// ([`Mat4::point_sums_fit`]): vertices then take the plain sums.
+    plain_sums: bool,
     normal_m: [[i16; 3]; 3],
     options: RenderOptions,
 }
@@ -605,6 +608,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             lighting: Lighting::new(material, global_ambient, lights, &camera.view),
             camera: *camera,
             modelview,
+            plain_sums: modelview.point_sums_fit(),
             normal_m: normal_matrix(&modelview).unwrap_or([[0; 3]; 3]),
             options,
         }
@@ -1052,7 +1056,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Eye-space position of mesh vertex `i`.
     #[inline]
     pub(crate) fn eye(&self, i: usize) -> Vec3 {
-        self.r.modelview.transform_point(self.mesh.positions[i])
+        let (m, p) = (&self.r.modelview, self.mesh.positions[i]);
+        if self.r.plain_sums {
+            m.transform_point_unsaturated(p)
+        } else {
+            m.transform_point(p)
+        }
     }
 
     /// Eye-space normal of mesh vertex `i`.

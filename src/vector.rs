@@ -649,6 +649,37 @@ impl Mat4 {
         Vec3::from_bits(row(0), row(1), row(2))
     }
 
+    /// Whether [`Mat4::transform_point`]'s sums can never saturate, for any
+    /// point: `Σ_c |m[r][c]|·2³¹ + |m[r][3]|·2²⁴ < 2⁶³` on each row (each
+    /// `|b_c| ≤ 2³¹`), so that [`Mat4::transform_point_unsaturated`] gives
+    /// the same result. True of any matrix whose linear part is below 2⁸
+    /// in every row sum (a model-view of scales below 128 or so).
+    pub(crate) fn point_sums_fit(&self) -> bool {
+        self.m[..3].iter().all(|row| {
+            let lin: u128 = row[..3].iter().map(|&v| v.unsigned_abs() as u128).sum();
+            (lin << 31) + ((row[3].unsigned_abs() as u128) << COORD_FRAC) < 1 << 63
+        })
+    }
+
+    /// [`Mat4::transform_point`] with plain sums, for a matrix of which
+    /// [`Mat4::point_sums_fit`] holds: then no sum can overflow (the bound
+    /// there), `acc >> 23` is below 2⁴⁰, and the result is bit for bit
+    /// `transform_point`'s.
+    #[inline]
+    pub(crate) fn transform_point_unsaturated(&self, p: Vec3) -> Vec3 {
+        let b = p.to_bits();
+        let row = |r: usize| {
+            let m = &self.m[r];
+            let acc = mul_i32(m[0], b[0])
+                + mul_i32(m[1], b[1])
+                + mul_i32(m[2], b[2])
+                + ((m[3] as i64) << COORD_FRAC);
+            let r = ((acc >> (COORD_FRAC - 1)) + 1) >> 1;
+            r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+        };
+        Vec3::from_bits(row(0), row(1), row(2))
+    }
+
     /// Applies the 3 × 3 linear part to a direction (w = 0), returning raw
     /// `i64` sums in the input's units times 2²⁴ (no rounding, no overflow:
     /// each product is below 2⁶², three of them below 2⁶³·1.5, summed
@@ -738,4 +769,97 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
         }
     }
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rasterizer::tests::xorshift;
+
+    /// Extreme and random coordinates.
+    fn points(next: &mut impl FnMut() -> u64) -> impl Iterator<Item = Vec3> + '_ {
+        let edge = [
+            i32::MIN,
+            i32::MIN + 1,
+            -(1 << 24),
+            -1,
+            0,
+            1,
+            1 << 24,
+            i32::MAX,
+        ];
+        let corners = (0..edge.len().pow(3)).map(move |k| {
+            let n = edge.len();
+            Vec3::from_bits(edge[k % n], edge[k / n % n], edge[k / n / n])
+        });
+        let random = (0..2000).map(|_| {
+            let v = next();
+            Vec3::from_bits(
+                v as i32,
+                (v >> 21) as i32,
+                (v >> 42) as i32 ^ (v << 7) as i32,
+            )
+        });
+        corners
+            .collect::<std::vec::Vec<_>>()
+            .into_iter()
+            .chain(random.collect::<std::vec::Vec<_>>())
+    }
+
+    #[test]
+    fn unsaturated_points_match_when_the_sums_fit() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        // Rows whose bound lies below, at and above 2^63, and random ones.
+        let limit = (1u64 << 32) - 1; // Σ|m| with |t| = 0: (2^32 − 1)·2^31 < 2^63
+        let mut checked = 0;
+        for k in 0..400 {
+            let mut m = Mat4::IDENTITY;
+            for row in m.m[..3].iter_mut() {
+                let v = next();
+                let lin = match k % 4 {
+                    0 => limit - (v % 4),
+                    1 => limit + 1 + (v % 4),
+                    _ => v % (limit * 2),
+                };
+                // Split `lin` over three entries with random signs.
+                let a = (lin / 3).min(i32::MAX as u64) as i64;
+                let b = ((lin - a as u64) / 2).min(i32::MAX as u64) as i64;
+                let c = (lin - a as u64 - b as u64).min(i32::MAX as u64) as i64;
+                let sign = |bit: u32, x: i64| if v >> bit & 1 == 1 { -x } else { x };
+                *row = [
+                    sign(60, a) as i32,
+                    sign(61, b) as i32,
+                    sign(62, c) as i32,
+                    if k % 4 == 0 {
+                        0
+                    } else {
+                        (v >> 8) as i32 >> (v % 24)
+                    },
+                ];
+            }
+            let fits = m.point_sums_fit();
+            let bound_ok = m.m[..3].iter().all(|r| {
+                let lin: i128 = r[..3].iter().map(|&x| (x as i128).abs()).sum();
+                lin * (1i128 << 31) + (r[3] as i128).abs() * (1 << 24) < 1i128 << 63
+            });
+            assert_eq!(fits, bound_ok, "{m:?}");
+            if fits {
+                checked += 1;
+                for p in points(&mut next) {
+                    assert_eq!(
+                        m.transform_point_unsaturated(p),
+                        m.transform_point(p),
+                        "{m:?} {p:?}"
+                    );
+                }
+            }
+        }
+        assert!(checked > 100, "only {checked} matrices fit");
+        // A row at the limit fits; one more unit does not.
+        let mut m = Mat4::IDENTITY;
+        m.m[0] = [i32::MAX, i32::MAX, 1, 0];
+        assert!(m.point_sums_fit());
+        m.m[0][2] = 2;
+        assert!(!m.point_sums_fit());
+    }
 }
