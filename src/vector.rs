@@ -638,13 +638,20 @@ impl Mat4 {
         let b = p.to_bits();
         let row = |r: usize| {
             let m = &self.m[r];
-            // Each product < 2^62 raw; three plus the translation (< 2^55
-            // after the shift up) are summed saturating.
-            let acc = mul_i32(m[0], b[0])
-                .saturating_add(mul_i32(m[1], b[1]))
-                .saturating_add(mul_i32(m[2], b[2]))
-                .saturating_add((m[3] as i64) << COORD_FRAC);
-            sat_shift24(acc)
+            // Each product is at most 2^62 in magnitude (2^62 only as
+            // i32::MIN²) and the translation, shifted up, at most 2^55: the
+            // back pair's sum fits i64; the front pair's leaves it only as
+            // 2^62 + 2^62. Saturating the front sum and the total gives the
+            // result of the exact sum: where one saturates, the exact sum
+            // is beyond ±2^63 on that side (the front) or the terms left,
+            // at most 2^62 + 2^55, cannot bring the saturated or the exact
+            // value back within ±2^61; both then round to beyond ±2^37 and
+            // clamp to the same `I8F24` bound. (So did the four terms summed
+            // saturating one by one, this function's form until session 14,
+            // which a unit test compares it with.)
+            let front = mul_i32(m[0], b[0]).saturating_add(mul_i32(m[1], b[1]));
+            let back = mul_i32(m[2], b[2]) + ((m[3] as i64) << COORD_FRAC);
+            sat_shift24(front.saturating_add(back))
         };
         Vec3::from_bits(row(0), row(1), row(2))
     }
@@ -653,7 +660,9 @@ impl Mat4 {
     /// point: `Σ_c |m[r][c]|·2³¹ + |m[r][3]|·2²⁴ < 2⁶³` on each row (each
     /// `|b_c| ≤ 2³¹`), so that [`Mat4::transform_point_unsaturated`] gives
     /// the same result. True of any matrix whose linear part is below 2⁸
-    /// in every row sum (a model-view of scales below 128 or so).
+    /// in every row sum (a model-view of scales below 128 or so). Used on
+    /// 32-bit targets, where a saturating 64-bit addition is a dozen
+    /// instructions.
     pub(crate) fn point_sums_fit(&self) -> bool {
         self.m[..3].iter().all(|row| {
             let lin: u128 = row[..3].iter().map(|&v| v.unsigned_abs() as u128).sum();
@@ -775,6 +784,81 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
 mod tests {
     use super::*;
     use crate::rasterizer::tests::xorshift;
+
+    /// `transform_point`'s row by exact `i128` sums, and by the four terms
+    /// summed saturating one by one (its form until session 14).
+    fn reference_rows(m: &Mat4, p: Vec3) -> ([i32; 3], [i32; 3]) {
+        let b = p.to_bits();
+        let exact = [0, 1, 2].map(|r| {
+            let row = &m.m[r];
+            let acc: i128 = (0..3).map(|c| row[c] as i128 * b[c] as i128).sum::<i128>()
+                + ((row[3] as i128) << COORD_FRAC);
+            let q = ((acc >> (COORD_FRAC - 1)) + 1) >> 1;
+            q.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+        });
+        let stepwise = [0, 1, 2].map(|r| {
+            let row = &m.m[r];
+            let acc = (row[0] as i64 * b[0] as i64)
+                .saturating_add(row[1] as i64 * b[1] as i64)
+                .saturating_add(row[2] as i64 * b[2] as i64)
+                .saturating_add((row[3] as i64) << COORD_FRAC);
+            sat_shift24(acc)
+        });
+        (exact, stepwise)
+    }
+
+    #[test]
+    fn transform_point_is_the_exact_sum_clamped() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        let edge = [
+            i32::MIN,
+            i32::MIN + 1,
+            -(1 << 30),
+            -(1 << 24),
+            -1,
+            0,
+            1,
+            1 << 24,
+            1 << 30,
+            i32::MAX,
+        ];
+        let pick = |v: u64| edge[(v % edge.len() as u64) as usize];
+        let mut saturated = 0;
+        for k in 0..20_000 {
+            let (v, w) = (next(), next());
+            let mut m = Mat4::IDENTITY;
+            for (r, row) in m.m[..3].iter_mut().enumerate() {
+                for (c, x) in row.iter_mut().enumerate() {
+                    let u = v.rotate_left((16 * r + 5 * c) as u32);
+                    // Extreme entries half of the time, random ones else.
+                    *x = if (u >> 3) & 1 == 0 {
+                        pick(u >> 8)
+                    } else {
+                        (u >> 16) as i32
+                    };
+                }
+            }
+            let p = if k % 2 == 0 {
+                Vec3::from_bits(pick(w), pick(w >> 8), pick(w >> 16))
+            } else {
+                Vec3::from_bits(
+                    w as i32,
+                    (w >> 21) as i32,
+                    (w >> 40) as i32 ^ (w << 9) as i32,
+                )
+            };
+            let got = m.transform_point(p).to_bits();
+            let (exact, stepwise) = reference_rows(&m, p);
+            assert_eq!(got, exact, "{m:?} {p:?}");
+            assert_eq!(got, stepwise, "{m:?} {p:?}");
+            saturated += got
+                .iter()
+                .filter(|&&x| x == i32::MAX || x == i32::MIN)
+                .count();
+        }
+        // The sweep reaches the clamps (and so the saturated sums).
+        assert!(saturated > 1000, "{saturated}");
+    }
 
     /// Extreme and random coordinates.
     fn points(next: &mut impl FnMut() -> u64) -> impl Iterator<Item = Vec3> + '_ {
