@@ -260,8 +260,8 @@ pub(crate) fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
 }
 
 /// The most pixel centres a triangle's box may hold for
-/// [`Triangle::setup_rows`] (and the whole-frame loop, before it lights the
-/// triangle) to test them one by one before the set-up.
+/// [`Triangle::setup_rows`] (and the renderer, before it lights an
+/// unclipped triangle) to test them one by one before the set-up.
 pub(crate) const TINY: i64 = 4;
 
 /// Whether the oriented triangle `v` (positions in 1/16 pixel, positive

@@ -1059,7 +1059,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     pub(crate) fn eye(&self, i: usize) -> Vec3 {
         let (m, p) = (&self.r.modelview, self.mesh.positions[i]);
         // On 32-bit targets a matrix that cannot saturate the sums takes
-        // plain ones (M0+ S1 −2 %); x86-64 keeps the one form, as the
+        // plain ones (M0+ S1 −1.2 %); x86-64 keeps the one form, as the
         // second copy changed how LLVM inlined the band renderer there
         // (S1 in 16-row bands +1.5 % under callgrind).
         if cfg!(not(target_pointer_width = "64")) && self.r.plain_sums {
