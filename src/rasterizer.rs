@@ -862,9 +862,11 @@ impl<'v, const N: usize> Triangle<'v, N> {
             return None;
         }
         // A box of at most TINY pixel centres, all in the rows drawn, is
-        // tested centre by centre before the set-up: a fifth of S3's
-        // triangles that reach here cover none. (The box lies within the
-        // vertices' box: each side below 2^26 pixels.)
+        // tested centre by centre before the set-up, unless the caller has
+        // (the renderer does for unclipped triangles, before lighting
+        // them; clipped pieces and `setup_rows` callers are tested here).
+        // (The box lies within the vertices' box: each side below 2^26
+        // pixels.)
         if !tested
             && r_lo == y_lo
             && r_hi == y_end

@@ -421,6 +421,11 @@ impl Carry for NoCarry {
 /// centres may skip it too, and the set-up then draws what it covers.
 const TINY_AREA: u64 = 256 * 2 * (TINY as u64 + 1);
 
+/// A polygon's pixel centres in the target: columns and rows (inclusive,
+/// rows limited to those drawn), and whether those rows are all of the
+/// box's rows in the viewport ([`Frame::pixel_box`]).
+type PixelBox = ((i64, i64), (i64, i64), bool);
+
 const F_PROJECTED: u8 = 1;
 const F_FRONT: u8 = 2;
 const F_BACK: u8 = 4;
@@ -1373,9 +1378,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// if there are none: the cheap test that spares tiny and off-screen
     /// triangles their lighting and set-up. Sample `16x + 8` lies in
     /// `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
-    #[allow(clippy::type_complexity)]
     #[inline]
-    fn pixel_box(&self, win: &[[i64; 3]]) -> Option<((i64, i64), (i64, i64), bool)> {
+    fn pixel_box(&self, win: &[[i64; 3]]) -> Option<PixelBox> {
         let (mut minx, mut maxx, mut miny, mut maxy) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
         for v in win {
             minx = minx.min(v[0]);

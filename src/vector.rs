@@ -659,8 +659,9 @@ impl Mat4 {
     /// Whether [`Mat4::transform_point`]'s sums can never saturate, for any
     /// point: `Σ_c |m[r][c]|·2³¹ + |m[r][3]|·2²⁴ < 2⁶³` on each row (each
     /// `|b_c| ≤ 2³¹`), so that [`Mat4::transform_point_unsaturated`] gives
-    /// the same result. True of any matrix whose linear part is below 2⁸
-    /// in every row sum (a model-view of scales below 128 or so). Used on
+    /// the same result. True of any matrix whose rows' linear entries sum
+    /// to less than 256 in magnitude (2³² raw), with room for the
+    /// translation. Used on
     /// 32-bit targets, where a saturating 64-bit addition is a dozen
     /// instructions.
     pub(crate) fn point_sums_fit(&self) -> bool {
@@ -860,7 +861,8 @@ mod tests {
         assert!(saturated > 1000, "{saturated}");
     }
 
-    /// Extreme and random coordinates.
+    /// Every point with coordinates from a set of extremes, then 2 000
+    /// random ones.
     fn points(next: &mut impl FnMut() -> u64) -> impl Iterator<Item = Vec3> + '_ {
         let edge = [
             i32::MIN,
@@ -872,11 +874,10 @@ mod tests {
             1 << 24,
             i32::MAX,
         ];
-        let corners = (0..edge.len().pow(3)).map(move |k| {
-            let n = edge.len();
-            Vec3::from_bits(edge[k % n], edge[k / n % n], edge[k / n / n])
-        });
-        let random = (0..2000).map(|_| {
+        let n = edge.len();
+        let corners = (0..n.pow(3))
+            .map(move |k| Vec3::from_bits(edge[k % n], edge[k / n % n], edge[k / n / n]));
+        let random = (0..2000).map(move |_| {
             let v = next();
             Vec3::from_bits(
                 v as i32,
@@ -884,10 +885,7 @@ mod tests {
                 (v >> 42) as i32 ^ (v << 7) as i32,
             )
         });
-        corners
-            .collect::<std::vec::Vec<_>>()
-            .into_iter()
-            .chain(random.collect::<std::vec::Vec<_>>())
+        corners.chain(random)
     }
 
     #[test]
