@@ -261,49 +261,149 @@ pub(crate) fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
 
 /// The most pixel centres a triangle's box may hold for
 /// [`Triangle::setup_rows`] (and the renderer, before it lights an
-/// unclipped triangle) to test them one by one before the set-up.
+/// unclipped triangle) to test them one by one instead of walking its
+/// edges: a triangle that covers none is dropped, and one that covers some
+/// draws the centres its [`coverage`] mask holds, with no edge set-up.
+/// (At most 32: the mask is a `u32`.)
 pub(crate) const TINY: i64 = 4;
 
-/// Whether the oriented triangle `v` (positions in 1/16 pixel, positive
-/// area) covers a pixel centre in columns `xs.0 ..= xs.1` of rows
-/// `ys.0 ..= ys.1`, by the rule the edge walk follows:
-/// `E = dx·(py − a.y) − dy·(px − a.x)` for each edge `a → b`, `E ≥ 0` on a
-/// left (`dy < 0`) or top (`dy = 0`, `dx > 0`) edge, `E > 0` on the others.
+/// Which pixel centres of columns `xs.0 ..= xs.1` and rows
+/// `ys.0 ..= ys.1` (at most 32 in all) the oriented triangle `v`
+/// (positions in 1/16 pixel, positive area) covers, by the rule the edge
+/// walk follows: bit `w·(y − ys.0) + (x − xs.0)` for centre `(x, y)`, `w`
+/// the box's width. For each edge `a → b`,
+/// `E = dx·(py − a.y) − dy·(px − a.x)`, `E ≥ 0` on a left (`dy < 0`) or
+/// top (`dy = 0`, `dx > 0`) edge, `E > 0` on the others. A row's covered
+/// centres are contiguous, as are a column's (each `E` admits a
+/// half-line of any line, or all of it, or none).
 ///
-/// Each `E` is computed at the box's first centre and stepped from there
-/// (`−16·dy` a column, `16·dx` a row): the box lies within the vertices'
-/// box, so each factor is below 2²⁹, each product below 2⁵⁸, and `E` at
-/// any centre of the box or one step beyond it below 2⁶⁰ in magnitude.
+/// Positions are taken relative to the box's first centre, where each
+/// `E` is computed, then stepped (`−16·dy` a column, `16·dx` a row). The
+/// box lies within the vertices' box, so each relative coordinate and
+/// each difference is below 2²⁹, each product below 2⁵⁸, and `E` at any
+/// centre of the box or one step beyond it below 2⁶⁰ in magnitude: `i64`.
+/// On 32-bit targets, vertices within 2¹⁴ of that centre (any tiny
+/// triangle not far across the viewport's edge) take `i32`: differences
+/// below 2¹⁵, products below 2²⁹, and 32 steps of at most 2¹⁹ each leave
+/// `E` below 2³¹.
 #[inline]
-pub(crate) fn covers_any(v: [(i64, i64); 3], xs: (i64, i64), ys: (i64, i64)) -> bool {
+pub(crate) fn coverage(v: [(i64, i64); 3], xs: (i64, i64), ys: (i64, i64)) -> u32 {
+    let (w, h) = (xs.1 - xs.0 + 1, ys.1 - ys.0 + 1);
+    debug_assert!(w >= 1 && h >= 1 && w * h <= 32);
     let (px, py) = (16 * xs.0 + 8, 16 * ys.0 + 8);
-    let mut row = [0i64; 3];
-    let mut step_x = [0i64; 3];
-    let mut step_y = [0i64; 3];
+    let rel = v.map(|p| (p.0 - px, p.1 - py));
+    let near = rel
+        .iter()
+        .all(|p| p.0.unsigned_abs() < 1 << 14 && p.1.unsigned_abs() < 1 << 14);
+    if cfg!(not(target_pointer_width = "64")) && near {
+        coverage_from(rel.map(|p| (p.0 as i32, p.1 as i32)), w as u32, h as u32)
+    } else {
+        coverage_from(rel, w as u32, h as u32)
+    }
+}
+
+/// [`coverage`] of a `w × h` box with the triangle's vertices relative to
+/// its first centre, in `i32` or `i64` (see there for the ranges).
+#[inline(always)]
+fn coverage_from<T>(v: [(T, T); 3], w: u32, h: u32) -> u32
+where
+    T: Copy
+        + PartialOrd
+        + From<i8>
+        + core::ops::Add<Output = T>
+        + core::ops::Sub<Output = T>
+        + core::ops::Mul<Output = T>
+        + core::ops::BitOr<Output = T>,
+{
+    let (zero, sixteen) = (T::from(0), T::from(16));
+    let mut e = [zero; 3];
+    let mut step_x = [zero; 3];
+    let mut wrap = [zero; 3];
     for k in 0..3 {
         let (a, b) = (v[k], v[(k + 1) % 3]);
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        // Inclusive edges admit E = 0: E + 1 > 0.
-        let bias = (dy < 0 || (dy == 0 && dx > 0)) as i64;
-        row[k] = mul_narrow(dx, py - a.1) - mul_narrow(dy, px - a.0) + bias;
-        step_x[k] = -16 * dy;
-        step_y[k] = 16 * dx;
+        // Inclusive edges admit E = 0. Kept as E − 1 (exclusive) or E
+        // (inclusive), a centre is inside when all three are ≥ 0: when
+        // their bitwise or is.
+        let inclusive = dy < zero || (dy == zero && dx > zero);
+        e[k] = dy * a.0 - dx * a.1 - T::from(if inclusive { 0 } else { 1 });
+        step_x[k] = zero - sixteen * dy;
+        // A row's last centre steps to the next row's first (w ≤ 32).
+        wrap[k] = sixteen * dx - T::from((w - 1) as i8) * step_x[k];
     }
-    for _ in ys.0..=ys.1 {
-        let mut e = row;
-        for _ in xs.0..=xs.1 {
-            if e[0] > 0 && e[1] > 0 && e[2] > 0 {
-                return true;
-            }
-            for k in 0..3 {
-                e[k] += step_x[k];
-            }
-        }
+    // One loop over the centres, row by row (the compiler would vectorise
+    // nested loops, a loss at a few centres).
+    let (mut mask, mut col) = (0u32, 1);
+    for bit in 0..w * h {
+        mask |= (((e[0] | e[1] | e[2]) >= zero) as u32) << bit;
+        let step = if col == w { &wrap } else { &step_x };
+        col = if col == w { 1 } else { col + 1 };
         for k in 0..3 {
-            row[k] += step_y[k];
+            e[k] = e[k] + step[k];
         }
     }
-    false
+    mask
+}
+
+/// What the caller of the set-up knows of a triangle's tiny box
+/// ([`TINY`], [`coverage`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Cover {
+    /// Nothing: the set-up tests a tiny box itself.
+    Untested,
+    /// Its box is known not to be tiny, or need not be tested.
+    Skip,
+    /// Its box is tiny, all in the rows drawn, and this is its coverage
+    /// (not zero: an empty one is dropped before the set-up).
+    Mask(u32),
+}
+
+/// The walk of a tiny box's coverage `mask` ([`coverage`]; columns
+/// `xs.0 ..= xs.1`, first row `y0`): edges whose bounds are each covered
+/// row's first and last columns, and the first and last covered rows;
+/// `None` for an empty mask, or one whose spans those edges cannot give.
+///
+/// The covered rows are contiguous, as are a row's covered columns (each
+/// edge function admits a half-line of any line). Edges that step by a
+/// whole column a row give the bounds of two rows exactly, and of any
+/// number of rows of a one-column box (the same column); a box of at
+/// most [`TINY`] ≤ 4 centres has no other shape with three covered rows.
+#[inline(always)]
+fn masked_walk(mask: u32, xs: (i64, i64), y0: i64) -> Option<(Edge, Edge, i64, i64)> {
+    if mask == 0 {
+        return None;
+    }
+    // At most TINY (< 32) columns.
+    let w = (xs.1 - xs.0 + 1) as u32;
+    let full = u32::MAX >> (32 - w);
+    let (mut first, mut m) = (y0, mask);
+    while m & full == 0 {
+        (first, m) = (first + 1, m >> w);
+    }
+    let top = m & full;
+    let (mut last, mut bottom) = (first, top);
+    while m >> w != 0 {
+        (last, m) = (last + 1, m >> w);
+        bottom = m & full;
+    }
+    if last - first > 1 && w > 1 {
+        return None;
+    }
+    let lo = |b: u32| xs.0 + b.trailing_zeros() as i64;
+    let hi = |b: u32| xs.0 + 31 - b.leading_zeros() as i64;
+    let edge = |q: i64, q_last: i64| Edge {
+        q,
+        r: 0,
+        dq: q_last - q,
+        dr: 0,
+        den: 1,
+    };
+    Some((
+        edge(lo(top), lo(bottom)),
+        edge(hi(top), hi(bottom)),
+        first,
+        last,
+    ))
 }
 
 /// One edge's bound on the span, stepped row by row without division.
@@ -773,24 +873,24 @@ impl<'v, const N: usize> Triangle<'v, N> {
         if !(v.iter().all(RasterVertex::within_limits) && viewport.within_limits()) {
             return None;
         }
-        Self::setup_rows_within(v, viewport, rows, cull, false)
+        Self::setup_rows_within(v, viewport, rows, cull, Cover::Untested)
     }
 
     /// [`Triangle::setup_rows`] for vertices the caller knows to be within
     /// the limits (the renderer's, which it clamps when it snaps them): no
     /// check. Outside them a debug build may panic on overflow and a
-    /// release build may draw the wrong pixels of `viewport`. `tested`: skip
-    /// the test of a tiny box centre by centre (the caller has made it, as
-    /// the renderer does before it lights an unclipped triangle). The
-    /// pixels are the same either way: the test only spares the set-up of a
-    /// triangle that covers no centre.
+    /// release build may draw the wrong pixels of `viewport`. `cover`: what
+    /// the caller knows of a tiny box (the renderer tests an unclipped
+    /// triangle's before it lights it). The pixels are the same whichever
+    /// it says: a tiny box's walk from its mask gives the spans the walk
+    /// along its edges would.
     #[inline(always)]
     pub(crate) fn setup_rows_within(
         v: &'v [RasterVertex<N>; 3],
         viewport: ClipRect,
         rows: (i32, i32),
         cull: bool,
-        tested: bool,
+        cover: Cover,
     ) -> Option<Self> {
         debug_assert!(v.iter().all(RasterVertex::within_limits) && viewport.within_limits());
         let clip = viewport;
@@ -822,97 +922,126 @@ impl<'v, const N: usize> Triangle<'v, N> {
         let y_lo = ((miny + 7) >> 4).max(clip.y0 as i64);
         let y_hi = ((maxy - 8) >> 4).min(clip.y1 as i64);
         // The rows drawn: the band's part of the viewport's rows.
-        let (r_lo, mut y_end) = (y_lo.max(rows.0 as i64), y_hi);
-        // Sort the edges into the left chain (dy < 0: `E ≥ 0` admits the
-        // columns right of them) and the right chain (dy > 0). Within the
-        // triangle's rows, the row's span lies between the two chains: one
-        // chain is a single edge, the other two edges meeting at the middle
-        // vertex, and on a side with two edges the other edge's line never
-        // binds (the triangle is convex; on the middle vertex's own row both
-        // give the same bound, ties included, as both pass through it).
-        // A horizontal edge (`dy = 0`, at most one) bounds rows only: a top
-        // one (`dx > 0`, top-left) admits its own row, which the bounding
-        // box already starts at; a bottom one (`dx < 0`) excludes its row.
-        let mut lines = [EdgeLine {
+        let r_lo = y_lo.max(rows.0 as i64);
+        // A box of at most TINY pixel centres, all in the rows drawn, is
+        // tested centre by centre, unless the caller has (the renderer
+        // does for unclipped triangles, before lighting them; clipped
+        // pieces and `setup_rows` callers are tested here): none covered,
+        // nothing is drawn; else the rows and edges of the walk come from
+        // the mask, not from the triangle's edges. (The box lies within
+        // the vertices' box: each side below 2^26 pixels.)
+        let mask = match cover {
+            Cover::Mask(m) => m,
+            Cover::Skip => 0,
+            Cover::Untested => {
+                if x_lo <= x_hi
+                    && r_lo == y_lo
+                    && y_lo <= y_hi
+                    && y_hi <= rows.1 as i64
+                    && mul_narrow(x_hi - x_lo + 1, y_hi - y_lo + 1) <= TINY
+                {
+                    let m = coverage(v.map(|p| (p.x, p.y)), (x_lo, x_hi), (y_lo, y_hi));
+                    if m == 0 {
+                        return None;
+                    }
+                    m
+                } else {
+                    0
+                }
+            }
+        };
+        let idle = EdgeLine {
             a: (0, 0),
             dx: 0,
             dy: 0,
-        }; 3];
-        // Left edges fill `lines` from the front, right ones from the back.
-        let (mut nl, mut nr) = (0, 3);
-        for (a, b) in [(0, 1), (1, 2), (2, 0)] {
-            let line = EdgeLine {
-                a: (v[a].x, v[a].y),
-                dx: v[b].x - v[a].x,
-                dy: v[b].y - v[a].y,
+        };
+        let (left, right, next, next_left, switch, r_lo, y_end) =
+            if let Some((left, right, first, last)) = masked_walk(mask, (x_lo, x_hi), y_lo) {
+                (left, right, idle, false, i64::MAX, first, last)
+            } else {
+                let mut y_end = y_hi;
+                // Sort the edges into the left chain (dy < 0: `E ≥ 0` admits the
+                // columns right of them) and the right chain (dy > 0). Within the
+                // triangle's rows, the row's span lies between the two chains: one
+                // chain is a single edge, the other two edges meeting at the middle
+                // vertex, and on a side with two edges the other edge's line never
+                // binds (the triangle is convex; on the middle vertex's own row both
+                // give the same bound, ties included, as both pass through it).
+                // A horizontal edge (`dy = 0`, at most one) bounds rows only: a top
+                // one (`dx > 0`, top-left) admits its own row, which the bounding
+                // box already starts at; a bottom one (`dx < 0`) excludes its row.
+                let mut lines = [idle; 3];
+                // Left edges fill `lines` from the front, right ones from the back.
+                let (mut nl, mut nr) = (0, 3);
+                for (a, b) in [(0, 1), (1, 2), (2, 0)] {
+                    let line = EdgeLine {
+                        a: (v[a].x, v[a].y),
+                        dx: v[b].x - v[a].x,
+                        dy: v[b].y - v[a].y,
+                    };
+                    if line.dy < 0 {
+                        lines[nl] = line;
+                        nl += 1;
+                    } else if line.dy > 0 {
+                        nr -= 1;
+                        lines[nr] = line;
+                    } else if line.dx < 0 {
+                        // ys < a.y: 16r + 8 ≤ a.y − 1.
+                        y_end = y_end.min((line.a.1 - 9) >> 4);
+                    }
+                }
+                let r_hi = y_end.min(rows.1 as i64);
+                if x_lo > x_hi || r_lo > r_hi {
+                    return None;
+                }
+                // The edges start at the first drawn row: the DDA's quotient and
+                // remainder there are those the walk from `y_lo` reaches (both are
+                // the exact floor of the same numerator).
+                let ys0 = 16 * r_lo + 8;
+                let (mut left, mut right) = (lines[0], lines[2]);
+                let (mut next, mut next_left, mut switch) = (lines[1], false, i64::MAX);
+                if nl == 2 || nr == 1 {
+                    // Two edges on one side, `lines[1]` the second one. The upper
+                    // one ends (left chain: starts; right chain: the edges run
+                    // down) at the middle vertex.
+                    let (e0, e1) = (lines[if nl == 2 { 0 } else { 2 }], lines[1]);
+                    let top = |e: &EdgeLine| if e.dy < 0 { e.a.1 + e.dy } else { e.a.1 };
+                    let (upper, lower) = if top(&e0) < top(&e1) {
+                        (e0, e1)
+                    } else {
+                        (e1, e0)
+                    };
+                    let mid_y = if upper.dy < 0 {
+                        upper.a.1
+                    } else {
+                        upper.a.1 + upper.dy
+                    };
+                    // The first row whose sample is at or below the middle vertex.
+                    let r_mid = (mid_y + 7) >> 4;
+                    let first = if r_lo < r_mid {
+                        (next, switch) = (lower, r_mid);
+                        upper
+                    } else {
+                        lower
+                    };
+                    next_left = nl == 2;
+                    if next_left {
+                        left = first;
+                    } else {
+                        right = first;
+                    }
+                }
+                (
+                    left.at(ys0),
+                    right.at(ys0),
+                    next,
+                    next_left,
+                    switch,
+                    r_lo,
+                    y_end,
+                )
             };
-            if line.dy < 0 {
-                lines[nl] = line;
-                nl += 1;
-            } else if line.dy > 0 {
-                nr -= 1;
-                lines[nr] = line;
-            } else if line.dx < 0 {
-                // ys < a.y: 16r + 8 ≤ a.y − 1.
-                y_end = y_end.min((line.a.1 - 9) >> 4);
-            }
-        }
         let r_hi = y_end.min(rows.1 as i64);
-        if x_lo > x_hi || r_lo > r_hi {
-            return None;
-        }
-        // A box of at most TINY pixel centres, all in the rows drawn, is
-        // tested centre by centre before the set-up, unless the caller has
-        // (the renderer does for unclipped triangles, before lighting
-        // them; clipped pieces and `setup_rows` callers are tested here).
-        // (The box lies within the vertices' box: each side below 2^26
-        // pixels.)
-        if !tested
-            && r_lo == y_lo
-            && r_hi == y_end
-            && mul_narrow(x_hi - x_lo + 1, r_hi - r_lo + 1) <= TINY
-            && !covers_any(v.map(|p| (p.x, p.y)), (x_lo, x_hi), (r_lo, r_hi))
-        {
-            return None;
-        }
-        // The edges start at the first drawn row: the DDA's quotient and
-        // remainder there are those the walk from `y_lo` reaches (both are
-        // the exact floor of the same numerator).
-        let ys0 = 16 * r_lo + 8;
-        let (mut left, mut right) = (lines[0], lines[2]);
-        let (mut next, mut next_left, mut switch) = (lines[1], false, i64::MAX);
-        if nl == 2 || nr == 1 {
-            // Two edges on one side, `lines[1]` the second one. The upper
-            // one ends (left chain: starts; right chain: the edges run
-            // down) at the middle vertex.
-            let (e0, e1) = (lines[if nl == 2 { 0 } else { 2 }], lines[1]);
-            let top = |e: &EdgeLine| if e.dy < 0 { e.a.1 + e.dy } else { e.a.1 };
-            let (upper, lower) = if top(&e0) < top(&e1) {
-                (e0, e1)
-            } else {
-                (e1, e0)
-            };
-            let mid_y = if upper.dy < 0 {
-                upper.a.1
-            } else {
-                upper.a.1 + upper.dy
-            };
-            // The first row whose sample is at or below the middle vertex.
-            let r_mid = (mid_y + 7) >> 4;
-            let first = if r_lo < r_mid {
-                (next, switch) = (lower, r_mid);
-                upper
-            } else {
-                lower
-            };
-            next_left = nl == 2;
-            if next_left {
-                left = first;
-            } else {
-                right = first;
-            }
-        }
-        let (left, right) = (left.at(ys0), right.at(ys0));
         let r = Recip::new(a);
         // Sample at the origin pixel, relative to each vertex.
         let (sx, sy) = (16 * x_lo + 8, 16 * y_lo + 8);
@@ -1271,7 +1400,10 @@ pub fn rasterize_rows<const N: usize>(
 
 #[cfg(test)]
 pub(crate) mod tests {
-    use super::{EdgeLine, Recip, NARROW_NUM};
+    use super::{
+        coverage, coverage_from, masked_walk, ClipRect, Cover, EdgeLine, RasterVertex, Recip,
+        Triangle, NARROW_NUM, TINY,
+    };
 
     /// A xorshift generator: reproducible operands without a dependency.
     pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
@@ -1281,6 +1413,103 @@ pub(crate) mod tests {
             x ^= x << 17;
             x
         }
+    }
+
+    /// The 32-bit coverage of 32-bit targets is the 64-bit one wherever it
+    /// applies (vertices within 2¹⁴ of the box's first centre), at the
+    /// ends of that range too, in boxes of every shape up to 32 centres;
+    /// overflow checks are on in the test build.
+    #[test]
+    fn narrow_coverage_is_the_wide_one() {
+        let mut bits = xorshift(0x6a09_e667_f3bc_c909);
+        let mut next = move |m: i64| (bits() % (2 * m as u64 + 1)) as i64 - m;
+        let lim = (1 << 14) - 1;
+        let mut covered = 0;
+        for n in 0..200_000 {
+            let w = 1 + next(15).unsigned_abs() as u32;
+            let h = 1 + next(31).unsigned_abs() as u32 % (32 / w);
+            let reach = [24, 400, lim][n % 3];
+            let mut v = [(0i64, 0i64); 3];
+            for p in &mut v {
+                *p = if n % 7 == 0 {
+                    (lim * next(1).signum(), lim * next(1).signum())
+                } else {
+                    (next(reach), next(reach))
+                };
+            }
+            // Positive area, as the set-up orients it.
+            let a = (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[1].1 - v[0].1) * (v[2].0 - v[0].0);
+            if a < 0 {
+                v.swap(1, 2);
+            }
+            let wide = coverage_from(v, w, h);
+            assert_eq!(
+                coverage_from(v.map(|p| (p.0 as i32, p.1 as i32)), w, h),
+                wide,
+                "{v:?} {w}x{h}"
+            );
+            covered += (wide != 0) as u32;
+        }
+        assert!(covered > 20_000, "{covered}");
+    }
+
+    /// A tiny box's walk from its coverage mask gives exactly the spans
+    /// the walk along its edges gives (rows, columns, attribute starts and
+    /// steps), whether the set-up tests the box itself or is handed the
+    /// mask as the renderer makes it: random tiny triangles of either
+    /// winding on the sub-pixel grid, some across the viewport's edges,
+    /// some slivers with steep gradients.
+    #[test]
+    fn masked_walk_is_the_edge_walk() {
+        let mut bits = xorshift(0x9e37_79b9_7f4a_7c15);
+        let mut next = move |m: i64| (bits() % (2 * m as u64 + 1)) as i64 - m;
+        let vp = ClipRect::of_size(48, 40).unwrap();
+        let rows = (vp.y0, vp.y1);
+        let (mut masked, mut empty) = (0, 0);
+        for _ in 0..100_000 {
+            let c = (24 * 16 + next(26 * 16), 20 * 16 + next(22 * 16));
+            let size = 8 + next(8).abs() * 8;
+            let v: [RasterVertex<2>; 3] = core::array::from_fn(|_| RasterVertex {
+                x: c.0 + next(size),
+                y: c.1 + next(size),
+                attr: [next(1 << 20), next(1 << 33)],
+            });
+            let spans = |cover| {
+                let mut out = Vec::new();
+                let t = Triangle::setup_rows_within(&v, vp, rows, false, cover);
+                if let Some(t) = t {
+                    t.for_each_span(|s| out.push((s.y, s.x0, s.x1, s.start, s.step, s.bounded)));
+                }
+                out
+            };
+            let edges = spans(Cover::Skip);
+            assert_eq!(spans(Cover::Untested), edges, "{v:?}");
+            // The renderer's test: the box of centres in the viewport.
+            let lo = |m: i64, at: i32| ((m + 7) >> 4).max(at as i64);
+            let hi = |m: i64, at: i32| ((m - 8) >> 4).min(at as i64);
+            let (xs, ys) = (v.map(|p| p.x), v.map(|p| p.y));
+            let min = |a: [i64; 3]| a[0].min(a[1]).min(a[2]);
+            let max = |a: [i64; 3]| a[0].max(a[1]).max(a[2]);
+            let bx = (lo(min(xs), vp.x0), hi(max(xs), vp.x1));
+            let by = (lo(min(ys), vp.y0), hi(max(ys), vp.y1));
+            if bx.0 > bx.1 || by.0 > by.1 || (bx.1 - bx.0 + 1) * (by.1 - by.0 + 1) > TINY {
+                continue;
+            }
+            let front =
+                (v[1].x - v[0].x) * (v[2].y - v[0].y) < (v[1].y - v[0].y) * (v[2].x - v[0].x);
+            let o = if front { [0, 2, 1] } else { [0, 1, 2] };
+            let m = coverage(o.map(|k| (v[k].x, v[k].y)), bx, by);
+            if m == 0 {
+                assert!(edges.is_empty(), "{v:?}");
+                empty += 1;
+                continue;
+            }
+            // (Every tiny mask has a walk: TINY ≤ 4.)
+            assert!(masked_walk(m, bx, by.0).is_some());
+            masked += 1;
+            assert_eq!(spans(Cover::Mask(m)), edges, "{v:?}");
+        }
+        assert!(masked > 5_000 && empty > 5_000, "{masked} {empty}");
     }
 
     /// The 32-bit edge set-up of 32-bit targets gives the 64-bit one's

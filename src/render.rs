@@ -44,7 +44,7 @@ use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::rasterizer::{
-    covers_any, ClipRect, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
+    coverage, ClipRect, Cover, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
 };
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
@@ -416,7 +416,7 @@ impl Carry for NoCarry {
 /// box is under `16(c_x + 1)` by `16(c_y + 1)` units, a triangle covers at
 /// most half its box, and `(c_x + 1)(c_y + 1) ≤ 2(TINY + 1)` as
 /// `c_x + c_y ≤ c_x·c_y + 1 ≤ TINY + 1` (from `(c_x − 1)(c_y − 1) ≥ 0`).
-/// A triangle at least this large skips [`Frame::uncovered_tiny`] with one
+/// A triangle at least this large skips [`Frame::tiny_cover`] with one
 /// comparison (most of S1's); one whose box the viewport cuts to a few
 /// centres may skip it too, and the set-up then draws what it covers.
 const TINY_AREA: u64 = 256 * 2 * (TINY as u64 + 1);
@@ -821,14 +821,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         let Some(frame) = self.frame(mesh, size)? else {
             return Ok(stats);
         };
-        for c in cache[..n].iter_mut() {
-            c.flags = 0;
+        // Every vertex projected up front: a mesh's vertices are (nearly)
+        // all used, and the triangle loop then tests no flag (callgrind,
+        // S3 on x86-64: 0.65 M instructions a frame).
+        for (i, c) in cache[..n].iter_mut().enumerate() {
+            frame.project_now(c, i);
         }
         for tri in mesh.indices {
             let idx = tri.map(|i| i as usize);
-            for &i in &idx {
-                frame.project(&mut cache[i], i);
-            }
             let mut corners = CacheCorners {
                 cache,
                 slot: idx,
@@ -1181,12 +1181,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Clips, culls, lights and rasterizes one triangle (its rows in
     /// `self.rows`).
     ///
-    /// Inlined into its callers (one per instantiation) on 32-bit targets:
+    /// Inlined into its callers (one per instantiation). On 32-bit targets
     /// LLVM stopped doing so on its own once the draw call's checks grew
     /// (QEMU counts: M4 S1 4.68 M out of line, 4.63 M inlined; M0+ S1 8.33 M
-    /// and 8.05 M, S3 89.0 M and 83.9 M). On x86-64, where it does so anyway
-    /// for the whole frame, forcing it cost S1 3 % (callgrind).
-    #[cfg_attr(not(target_pointer_width = "64"), inline(always))]
+    /// and 8.05 M, S3 89.0 M and 83.9 M); on x86-64 once tiny boxes' masks
+    /// set up their walks (callgrind, S1 in cached 16-row bands: 3.113 M out
+    /// of line, 3.060 M inlined).
+    #[inline(always)]
     pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners, K: Carry>(
         &self,
         c: &mut C,
@@ -1263,7 +1264,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             (poly, win, count, a)
         };
-        if tested && a.unsigned_abs() < TINY_AREA && self.uncovered_tiny(a, &win) {
+        let cover = if !tested {
+            Cover::Untested
+        } else if a.unsigned_abs() < TINY_AREA {
+            self.tiny_cover(a, &win)
+        } else {
+            Cover::Skip
+        };
+        if cover == Cover::Mask(0) {
             return Ok(());
         }
         let lit_back = a > 0 && self.r.options.two_sided;
@@ -1287,7 +1295,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     colour,
                     plain,
                 };
-                self.fan(&verts[..count], tested, stats, carry, extra, |sp, st| {
+                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
                     self.span_flat(sp, colour, plain, sink, depth, st, z_inside)
                 })
             }
@@ -1308,7 +1316,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     z_inside,
                     ..CarryExtra::default()
                 };
-                self.fan(&verts[..count], tested, stats, carry, extra, |sp, st| {
+                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
                     self.span_gouraud(sp, sink, depth, st, z_inside)
                 })
             }
@@ -1333,7 +1341,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     z_inside,
                     ..CarryExtra::default()
                 };
-                self.fan(&verts[..count], tested, stats, carry, extra, |sp, st| {
+                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
                     self.span_phong(sp, sink, depth, st, z_inside)
                 })
             }
@@ -1348,28 +1356,31 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         a == 0 || (a > 0 && self.r.options.cull) || self.pixel_box(win).is_none()
     }
 
-    /// Whether an unclipped triangle that [`Self::rejects`] keeps (`w`: its
-    /// window positions, then the first again) has a box of at most
-    /// [`TINY`] pixel centres, all in the rows drawn, and covers none of
-    /// them: the set-up would find the same (its own test, the same edge
-    /// functions), but only after the triangle's vertices were lit and its
-    /// raster vertices built. (S3: 1 812 of the 8 966 triangles that pass
-    /// the box test cover no centre; testing them here spares 396 of 4 952
-    /// vertex lightings and 1 812 triangles' raster vertices.)
+    /// For an unclipped triangle that [`Self::rejects`] keeps (`w`: its
+    /// window positions, then the first again) whose box holds at most
+    /// [`TINY`] pixel centres, all in the rows drawn: which of them it
+    /// covers ([`Cover::Mask`]; none: it is dropped before its vertices are
+    /// lit and its raster vertices built); else [`Cover::Skip`]. The
+    /// set-up draws a mask's spans without setting up edges. (S3: 1 812 of
+    /// the 8 966 triangles that pass the box test cover no centre; testing
+    /// them here spares 396 of 4 952 vertex lightings and 1 812 triangles'
+    /// raster vertices.)
     #[inline(always)]
-    fn uncovered_tiny(&self, a: i64, w: &[[i64; 3]; 4]) -> bool {
+    fn tiny_cover(&self, a: i64, w: &[[i64; 3]; 4]) -> Cover {
         let Some((xs, ys, whole)) = self.pixel_box(&w[..3]) else {
-            return true;
+            return Cover::Mask(0);
         };
         // Sides within the viewport's (at most `MAX_TARGET_SIDE`): the
         // product fits. Oriented as the set-up orients it (positive area).
-        whole
-            && mul_narrow(xs.1 - xs.0 + 1, ys.1 - ys.0 + 1) <= TINY
-            && !covers_any(
+        if whole && mul_narrow(xs.1 - xs.0 + 1, ys.1 - ys.0 + 1) <= TINY {
+            Cover::Mask(coverage(
                 if a < 0 { [0, 2, 1] } else { [0, 1, 2] }.map(|k| (w[k][0], w[k][1])),
                 xs,
                 ys,
-            )
+            ))
+        } else {
+            Cover::Skip
+        }
     }
 
     /// The pixel centres inside the target that the polygon's bounding box
@@ -1412,7 +1423,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     fn fan<const N: usize, E, K: Carry>(
         &self,
         verts: &[RasterVertex<N>],
-        tested: bool,
+        cover: Cover,
         stats: &mut DrawStats,
         carry: &mut K,
         extra: CarryExtra,
@@ -1432,7 +1443,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // Culling was decided for the whole polygon; a piece agrees with
             // it or has no area.
             if let Some(t) =
-                Triangle::setup_rows_within(tri, self.viewport, self.rows, false, tested)
+                Triangle::setup_rows_within(tri, self.viewport, self.rows, false, cover)
             {
                 stats.drawn = stats.drawn.saturating_add(1);
                 let rest = t.walk_rows(|s| {
