@@ -823,7 +823,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         };
         // Every vertex projected up front: a mesh's vertices are (nearly)
         // all used, and the triangle loop then tests no flag (callgrind,
-        // S3 on x86-64: 0.65 M instructions a frame).
+        // S3 on x86-64: 0.17 M instructions a frame).
         for (i, c) in cache[..n].iter_mut().enumerate() {
             frame.project_now(c, i);
         }
