@@ -264,8 +264,11 @@ pub(crate) fn area2<const N: usize>(v: &[RasterVertex<N>; 3]) -> i64 {
 /// unclipped triangle) to test them one by one instead of walking its
 /// edges: a triangle that covers none is dropped, and one that covers some
 /// draws the centres its [`coverage`] mask holds, with no edge set-up.
-/// (At most 32: the mask is a `u32`.)
+/// At most 4: the covered centres of such a box are one row, two rows or
+/// one column, which is what [`masked_walk`] walks (and its row shifts
+/// stay below 32 bits).
 pub(crate) const TINY: i64 = 4;
+const _: () = assert!(TINY <= 4);
 
 /// Which pixel centres of columns `xs.0 ..= xs.1` and rows
 /// `ys.0 ..= ys.1` (at most 32 in all) the oriented triangle `v`
@@ -284,8 +287,10 @@ pub(crate) const TINY: i64 = 4;
 /// centre of the box or one step beyond it below 2⁶⁰ in magnitude: `i64`.
 /// On 32-bit targets, vertices within 2¹⁴ of that centre (any tiny
 /// triangle not far across the viewport's edge) take `i32`: differences
-/// below 2¹⁵, products below 2²⁹, and 32 steps of at most 2¹⁹ each leave
-/// `E` below 2³¹.
+/// below 2¹⁵, products below 2²⁹, `E` at the first centre below 2³⁰, and
+/// at most 32 column and 32 row steps of at most 2¹⁹ each from there
+/// leave it below 2³¹ (a row's wrap, `16·dx − (w − 1)·(−16·dy)`, is
+/// below 2²⁴).
 #[inline]
 pub(crate) fn coverage(v: [(i64, i64); 3], xs: (i64, i64), ys: (i64, i64)) -> u32 {
     let (w, h) = (xs.1 - xs.0 + 1, ys.1 - ys.0 + 1);
@@ -367,13 +372,14 @@ pub(crate) enum Cover {
 /// edge function admits a half-line of any line). Edges that step by a
 /// whole column a row give the bounds of two rows exactly, and of any
 /// number of rows of a one-column box (the same column); a box of at
-/// most [`TINY`] ≤ 4 centres has no other shape with three covered rows.
+/// most [`TINY`] ≤ 4 centres has no other shape with three covered rows,
+/// so for it the walk always exists.
 #[inline(always)]
 fn masked_walk(mask: u32, xs: (i64, i64), y0: i64) -> Option<(Edge, Edge, i64, i64)> {
     if mask == 0 {
         return None;
     }
-    // At most TINY (< 32) columns.
+    // At most TINY (≤ 4) columns.
     let w = (xs.1 - xs.0 + 1) as u32;
     let full = u32::MAX >> (32 - w);
     let (mut first, mut m) = (y0, mask);
