@@ -21,7 +21,10 @@
 //! the span (the chain with two edges switches at the middle vertex's
 //! row); each bound is an exact integer division (floor or ceiling) kept
 //! row to row as a quotient and remainder, so the span is exact. The span
-//! is clipped to the caller's rectangle (the target's bounds).
+//! is clipped to the caller's rectangle (the target's bounds). A box of at
+//! most four pixel centres is tested centre by centre instead, and its
+//! covered centres give the walk's bounds directly (`coverage`,
+//! `masked_walk`): the same spans, without the edges' divisions.
 //!
 //! # Attributes
 //! Each attribute (depth, colour, normal, position; scaled by the caller)
@@ -283,7 +286,7 @@ const _: () = assert!(TINY <= 4);
 /// Positions are taken relative to the box's first centre, where each
 /// `E` is computed, then stepped (`−16·dy` a column, `16·dx` a row). The
 /// box lies within the vertices' box, so each relative coordinate and
-/// each difference is below 2²⁹, each product below 2⁵⁸, and `E` at any
+/// each difference is at most 2²⁹, each product at most 2⁵⁸, and `E` at any
 /// centre of the box or one step beyond it below 2⁶⁰ in magnitude: `i64`.
 /// On 32-bit targets, vertices within 2¹⁴ of that centre (any tiny
 /// triangle not far across the viewport's edge) take `i32`: differences
@@ -684,7 +687,8 @@ pub struct Walk<const N: usize> {
     switch: i64,
     x_lo: i64,
     x_hi: i64,
-    /// The row the walk is at, and the triangle's last row in the viewport.
+    /// The row the walk is at, and its last row: the triangle's last row in
+    /// the viewport (a tiny box's last covered row).
     y: i64,
     y_end: i64,
     /// Attribute values at pixel (x_lo, y).
@@ -1421,10 +1425,12 @@ pub(crate) mod tests {
         }
     }
 
-    /// The 32-bit coverage of 32-bit targets is the 64-bit one wherever it
-    /// applies (vertices within 2¹⁴ of the box's first centre), at the
-    /// ends of that range too, in boxes of every shape up to 32 centres;
-    /// overflow checks are on in the test build.
+    /// The 32-bit form of the coverage test is the 64-bit one wherever
+    /// 32-bit targets take it (vertices within 2¹⁴ of the box's first
+    /// centre), at the ends of that range too, in boxes of every shape up
+    /// to 32 centres; overflow checks are on in the test build. (Which form
+    /// `coverage` takes depends on the target: the firmware frames,
+    /// identical to the host's, run the 32-bit one.)
     #[test]
     fn narrow_coverage_is_the_wide_one() {
         let mut bits = xorshift(0x6a09_e667_f3bc_c909);
@@ -1432,7 +1438,7 @@ pub(crate) mod tests {
         let lim = (1 << 14) - 1;
         let mut covered = 0;
         for n in 0..200_000 {
-            let w = 1 + next(15).unsigned_abs() as u32;
+            let w = 1 + next(31).unsigned_abs() as u32;
             let h = 1 + next(31).unsigned_abs() as u32 % (32 / w);
             let reach = [24, 400, lim][n % 3];
             let mut v = [(0i64, 0i64); 3];
@@ -1462,34 +1468,58 @@ pub(crate) mod tests {
     /// A tiny box's walk from its coverage mask gives exactly the spans
     /// the walk along its edges gives (rows, columns, attribute starts and
     /// steps), whether the set-up tests the box itself or is handed the
-    /// mask as the renderer makes it: random tiny triangles of either
-    /// winding on the sub-pixel grid, some across the viewport's edges,
-    /// some slivers with steep gradients.
+    /// mask as the renderer makes it, in the whole viewport and in bands:
+    /// random tiny triangles of either winding on the sub-pixel grid, some
+    /// across the viewport's edges, some slivers (three vertices within a
+    /// sub-pixel or two of a line through a pixel centre) with steep
+    /// gradients.
     #[test]
     fn masked_walk_is_the_edge_walk() {
         let mut bits = xorshift(0x9e37_79b9_7f4a_7c15);
         let mut next = move |m: i64| (bits() % (2 * m as u64 + 1)) as i64 - m;
         let vp = ClipRect::of_size(48, 40).unwrap();
-        let rows = (vp.y0, vp.y1);
-        let (mut masked, mut empty) = (0, 0);
-        for _ in 0..100_000 {
+        let whole = (vp.y0, vp.y1);
+        let (mut masked, mut empty, mut slivers, mut banded) = (0, 0, 0, 0);
+        for n in 0..100_000 {
             let c = (24 * 16 + next(26 * 16), 20 * 16 + next(22 * 16));
             let size = 8 + next(8).abs() * 8;
-            let v: [RasterVertex<2>; 3] = core::array::from_fn(|_| RasterVertex {
+            let mut v: [RasterVertex<2>; 3] = core::array::from_fn(|_| RasterVertex {
                 x: c.0 + next(size),
                 y: c.1 + next(size),
-                attr: [next(1 << 20), next(1 << 33)],
+                attr: [next(1 << 20), next((1 << 33) - 1)],
             });
-            let spans = |cover| {
+            if n % 4 == 0 {
+                // A sliver along a line through a pixel centre.
+                let p = (16 * (c.0 >> 4) + 8, 16 * (c.1 >> 4) + 8);
+                let (a, b) = (next(12), next(12));
+                let mut at = |dx: i64, dy: i64, e: i64| (p.0 + dx + next(e), p.1 + dy + next(e));
+                let w = [at(-a, -b, 1), at(a, b, 1), at(0, 0, 2)];
+                for (v, w) in v.iter_mut().zip(w) {
+                    (v.x, v.y) = w;
+                }
+            }
+            if super::area2(&v) == 0 {
+                continue;
+            }
+            let spans = |cover, rows| {
                 let mut out = Vec::new();
                 let t = Triangle::setup_rows_within(&v, vp, rows, false, cover);
+                let exact = t.is_some_and(|t| t.exact);
                 if let Some(t) = t {
                     t.for_each_span(|s| out.push((s.y, s.x0, s.x1, s.start, s.step, s.bounded)));
                 }
-                out
+                (out, exact)
             };
-            let edges = spans(Cover::Skip);
-            assert_eq!(spans(Cover::Untested), edges, "{v:?}");
+            let (edges, exact) = spans(Cover::Skip, whole);
+            assert_eq!(spans(Cover::Untested, whole).0, edges, "{v:?}");
+            // A band of 1 to 4 rows somewhere in the viewport.
+            let y0 = next(20).abs() as i32 * 2;
+            let band = (y0, (y0 + next(3).abs() as i32).min(vp.y1));
+            assert_eq!(
+                spans(Cover::Untested, band).0,
+                spans(Cover::Skip, band).0,
+                "{v:?}"
+            );
             // The renderer's test: the box of centres in the viewport.
             let lo = |m: i64, at: i32| ((m + 7) >> 4).max(at as i64);
             let hi = |m: i64, at: i32| ((m - 8) >> 4).min(at as i64);
@@ -1513,9 +1543,15 @@ pub(crate) mod tests {
             // (Every tiny mask has a walk: TINY ≤ 4.)
             assert!(masked_walk(m, bx, by.0).is_some());
             masked += 1;
-            assert_eq!(spans(Cover::Mask(m)), edges, "{v:?}");
+            slivers += exact as u32;
+            assert_eq!(spans(Cover::Mask(m), whole).0, edges, "{v:?}");
+            if by.0 >= band.0 as i64 && by.1 <= band.1 as i64 {
+                banded += 1;
+                assert_eq!(spans(Cover::Mask(m), band).0, edges, "{v:?}");
+            }
         }
         assert!(masked > 5_000 && empty > 5_000, "{masked} {empty}");
+        assert!(slivers > 10 && banded > 100, "{slivers} {banded}");
     }
 
     /// The 32-bit edge set-up of 32-bit targets gives the 64-bit one's

@@ -1,11 +1,12 @@
 //! The pipeline: from a mesh, a model transform and a camera to RGB565
 //! pixels in any `embedded-graphics` `DrawTarget`.
 //!
-//! Per vertex, once per frame and only for vertices that a triangle uses:
-//! model-view transform (`I8F24`), normal transform (`I2F14`, 16 × 16-bit
-//! products), projection to clip space, snapping to 1/16 pixel. Lighting
-//! (Gouraud) is done later, and only for vertices of triangles that survive
-//! culling and touch the target. Triangles that cross the near plane are
+//! Per vertex, once per frame: model-view transform (`I8F24`), projection
+//! to clip space, snapping to 1/16 pixel (the whole frame does every mesh
+//! vertex in one pass before its triangles; the band renderer, those its
+//! triangles use). The normal transform (`I2F14`, 16 × 16-bit products)
+//! and lighting (Gouraud) are done later, and only for vertices of
+//! triangles that survive culling and touch the target. Triangles that cross the near plane are
 //! clipped in clip space (SPEC.md 5); the rest of the frustum is left to
 //! the rasterizer's clipping to the target's bounds.
 //!
@@ -555,8 +556,7 @@ pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
     camera: Camera,
     modelview: Mat4,
     /// Whether `modelview`'s point sums can never saturate
-    /// ([`Mat4::point_sums_fit`]): vertices then take plain sums on 32-bit
-    /// targets.
+    /// ([`Mat4::point_sums_fit`]): vertices then take plain sums.
     plain_sums: bool,
     normal_m: [[i16; 3]; 3],
     options: RenderOptions,
@@ -1063,11 +1063,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     #[inline]
     pub(crate) fn eye(&self, i: usize) -> Vec3 {
         let (m, p) = (&self.r.modelview, self.mesh.positions[i]);
-        // On 32-bit targets a matrix that cannot saturate the sums takes
-        // plain ones (M0+ S1 −1.2 %); x86-64 keeps the one form, as the
-        // second copy changed how LLVM inlined the band renderer there
-        // (S1 in 16-row bands +1.5 % under callgrind).
-        if cfg!(not(target_pointer_width = "64")) && self.r.plain_sums {
+        // A matrix that cannot saturate the sums takes plain ones (M0+ S1
+        // −1.2 %; x86-64 S1 −0.6 %, S3 −1.2 % under callgrind, once
+        // `Frame::triangle` was inlined everywhere: before that, the second
+        // copy changed how LLVM inlined the band renderer on x86-64).
+        if self.r.plain_sums {
             m.transform_point_unsaturated(p)
         } else {
             m.transform_point(p)
