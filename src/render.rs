@@ -6,9 +6,9 @@
 //! vertex in one pass before its triangles; the band renderer, those its
 //! triangles use). The normal transform (`I2F14`, 16 × 16-bit products)
 //! and lighting (Gouraud) are done later, and only for vertices of
-//! triangles that survive culling and touch the target. Triangles that cross the near plane are
-//! clipped in clip space (SPEC.md 5); the rest of the frustum is left to
-//! the rasterizer's clipping to the target's bounds.
+//! triangles that survive culling and touch the target. Triangles that
+//! cross the near plane are clipped in clip space (SPEC.md 5); the rest of
+//! the frustum is left to the rasterizer's clipping to the target's bounds.
 //!
 //! Output goes through [`DrawTarget::fill_contiguous`], one call per span
 //! (or per run of pixels that pass the depth test), never per pixel.
