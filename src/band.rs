@@ -619,18 +619,30 @@ impl Job<'_, '_> {
                 if hi < b0 || lo > b1 {
                     continue;
                 }
-                let end = ((r + 1) * per).min(indices.len());
-                for (j, tri) in indices[r * per..end].iter().enumerate() {
-                    if j < 32 && self.visible[r] & (1 << j) == 0 {
-                        continue;
-                    }
-                    let t = (r * per + j) as u32;
+                let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
+                // The run's first 32 triangles by their set visibility
+                // bits, the rest (a run longer than 32) all.
+                let mut bits = self.visible[r];
+                let first = core::iter::from_fn(move || {
+                    let j = bits.trailing_zeros() as usize;
+                    bits &= bits.wrapping_sub(1);
+                    (j < 32).then_some(j)
+                });
+                for j in first.chain(32..end - start) {
+                    let t = (start + j) as u32;
+                    let tri = indices[start + j];
                     if K::ON {
                         carry.set_tag(t);
                         if let Some((walk, extra)) = carry.take(t) {
-                            frame
-                                .resume::<M, _, _, _>(walk, extra, &mut sink, depth, stats, carry)
+                            // Drawn from its place in the store, then
+                            // dropped there; what goes on is kept anew.
+                            let rest = frame
+                                .resume::<M, _, _>(walk, extra, &mut sink, depth, stats)
                                 .map_err(lift)?;
+                            carry.drop_taken();
+                            if let Some(w) = rest {
+                                carry.put(w, extra);
+                            }
                             continue;
                         }
                     }
@@ -704,9 +716,12 @@ trait BandCarry: Carry {
     fn start_band(&mut self);
     /// Triangle `t` is drawn next (what `put` keeps belongs to it).
     fn set_tag(&mut self, t: u32);
-    /// Triangle `t`'s walk if the band above kept it. Triangles are asked
-    /// in increasing order; entries for smaller ones are dropped.
-    fn take(&mut self, t: u32) -> Option<(Walk<7>, CarryExtra)>;
+    /// Triangle `t`'s walk if the band above kept it, left in the store
+    /// until [`BandCarry::drop_taken`]. Triangles are asked in increasing
+    /// order; entries for smaller ones are dropped.
+    fn take(&mut self, t: u32) -> Option<(&Walk<7>, CarryExtra)>;
+    /// Drops the entry [`BandCarry::take`] gave.
+    fn drop_taken(&mut self);
     /// A band ends: what the band above left and this band did not take
     /// is dropped.
     fn end_band(&mut self);
@@ -735,18 +750,25 @@ impl BandCarry for CarryBuf {
         self.tag = t;
     }
     #[inline(always)]
-    fn take(&mut self, t: u32) -> Option<(Walk<7>, CarryExtra)> {
+    fn take(&mut self, t: u32) -> Option<(&Walk<7>, CarryExtra)> {
         while self.incoming > 0 {
-            if self.q.front()?.t > t {
+            let front = self.q.front()?.t;
+            if front > t {
                 return None;
             }
-            let c = self.q.pop_front()?;
-            self.incoming -= 1;
-            if c.t == t {
-                return Some((c.walk, c.extra));
+            if front == t {
+                let c = self.q.front()?;
+                return Some((&c.walk, c.extra));
             }
+            self.q.pop_front();
+            self.incoming -= 1;
         }
         None
+    }
+    #[inline(always)]
+    fn drop_taken(&mut self) {
+        self.q.pop_front();
+        self.incoming -= 1;
     }
     #[inline(always)]
     fn end_band(&mut self) {
@@ -763,9 +785,11 @@ impl BandCarry for NoCarry {
     #[inline(always)]
     fn set_tag(&mut self, _: u32) {}
     #[inline(always)]
-    fn take(&mut self, _: u32) -> Option<(Walk<7>, CarryExtra)> {
+    fn take(&mut self, _: u32) -> Option<(&Walk<7>, CarryExtra)> {
         None
     }
+    #[inline(always)]
+    fn drop_taken(&mut self) {}
     #[inline(always)]
     fn end_band(&mut self) {}
 }
@@ -785,13 +809,15 @@ impl Runs {
 }
 
 /// Transforms and projects every vertex into the compact cache (no
-/// colour yet).
+/// colour yet), the vertex's work inlined in the loop (callgrind, S1 in
+/// cached 16-row bands: 2.888 M → 2.859 M).
+#[inline(never)]
 fn prepare_cache<S: Specular, V: Viewer, L: LightSet>(
     f: &Frame<'_, '_, S, V, L>,
     cache: &mut [BandVertex],
 ) {
     for (i, v) in cache.iter_mut().enumerate() {
-        let clip = f.proj.clip(f.eye(i));
+        let clip = f.proj.clip(f.eye_inline(i));
         let inside = clip[2] + clip[3] >= 0;
         let w = if inside { f.window(&clip) } else { [0; 3] };
         // Window positions are clamped to ±2^28, depths to ±2^30: i32.
