@@ -721,7 +721,8 @@ trait BandCarry: Carry {
     /// until [`BandCarry::drop_taken`]. Triangles are asked in increasing
     /// order; entries for smaller ones are dropped.
     fn take(&mut self, t: u32) -> Option<(&Walk<7>, CarryExtra)>;
-    /// Drops the entry [`BandCarry::take`] gave.
+    /// Drops the entry [`BandCarry::take`] gave: only after a `take` that
+    /// returned `Some`, before any other call.
     fn drop_taken(&mut self);
     /// A band ends: what the band above left and this band did not take
     /// is dropped.
@@ -768,6 +769,7 @@ impl BandCarry for CarryBuf {
     }
     #[inline(always)]
     fn drop_taken(&mut self) {
+        debug_assert!(self.incoming > 0);
         self.q.pop_front();
         self.incoming -= 1;
     }
@@ -810,8 +812,8 @@ impl Runs {
 }
 
 /// Transforms and projects every vertex into the compact cache (no
-/// colour yet), the vertex's work inlined in the loop (callgrind, S1 in
-/// cached 16-row bands: 2.888 M → 2.859 M).
+/// colour yet), with the eye transform inlined in the loop (callgrind, S1
+/// in cached 16-row bands: 2.888 M → 2.859 M).
 #[inline(never)]
 fn prepare_cache<S: Specular, V: Viewer, L: LightSet>(
     f: &Frame<'_, '_, S, V, L>,
@@ -868,12 +870,15 @@ where
     L: LightSet,
 {
     let v = [&cache[idx[0]], &cache[idx[1]], &cache[idx[2]]];
-    let all_inside = v[0].c[1] & v[1].c[1] & v[2].c[1] & ((B_INSIDE >> 32) as u32) != 0;
-    if all_inside {
-        let (lo, hi) = rows_of([v[0].y as i64, v[1].y as i64, v[2].y as i64]);
-        if hi < f.rows.0 as i64 || lo > f.rows.1 as i64 {
-            return Ok(());
-        }
+    // Rows first: a vertex behind the near plane has no window position,
+    // so a rejection by rows holds only if all three are in front (testing
+    // the rows first, callgrind: S1 in cached 16-row bands 2.815 M →
+    // 2.799 M).
+    let (lo, hi) = rows_of([v[0].y as i64, v[1].y as i64, v[2].y as i64]);
+    if (hi < f.rows.0 as i64 || lo > f.rows.1 as i64)
+        && v[0].c[1] & v[1].c[1] & v[2].c[1] & ((B_INSIDE >> 32) as u32) != 0
+    {
+        return Ok(());
     }
     f.triangle::<M, P, D, _, _>(&mut BandCorners { cache, idx }, sink, depth, stats, carry)
 }

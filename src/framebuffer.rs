@@ -169,7 +169,8 @@ impl DrawTarget for Framebuffer<'_> {
     {
         let full = area.size.width as usize;
         match self.clip(area) {
-            // Fast path: the whole area is inside; copy row by row.
+            // Fast path: the whole area is inside; copy row by row, or as
+            // one run for whole rows.
             Some((x0, y0, w, h))
                 if w == full
                     && h == area.size.height as usize
@@ -274,9 +275,10 @@ mod tests {
     }
 
     /// Areas inside (whole rows among them), partly outside on every side,
-    /// wholly outside, empty, with colours that run out early, and areas whose far corner lies
-    /// past `i32::MAX` (where `embedded-graphics`' rectangle arithmetic
-    /// overflows): the model's pixels, and no panic in a debug build.
+    /// wholly outside, empty, with colours that run out early, and areas
+    /// whose far corner lies past `i32::MAX` (where `embedded-graphics`'
+    /// rectangle arithmetic overflows): the model's pixels, and no panic in
+    /// a debug build.
     #[test]
     fn fill_contiguous_clips_like_the_model() {
         let mut rnd = xorshift(0x00F1_11C0_0171_6005);
