@@ -1303,7 +1303,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             .all(|w| (DRIFT..(65535 << 8) - DRIFT).contains(&w[2]));
         match M::KIND {
             ShadingKind::Flat => {
-                let e = [0, 1, 2].map(|k| c.eye_normal(self, k, false).0);
+                let e = [
+                    c.eye_normal(self, 0, false).0,
+                    c.eye_normal(self, 1, false).0,
+                    c.eye_normal(self, 2, false).0,
+                ];
                 let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
                 let n = if lit_back { n.neg() } else { n };
                 let colour = self.r.lighting.shade(centroid(e), n);
