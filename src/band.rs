@@ -684,8 +684,8 @@ impl Job<'_, '_> {
 /// against +16.2 % with 16 entries, +13.5 % with 24 and +10.0 % with 64
 /// (all 294). Once the whole frame culled before building its polygons
 /// (which the bands, culling in a pre-pass, did already), 32 entries gave
-/// +15.0 % and 48 gave +13.9 % (callgrind, `band_cost probe`; +15.0 % since
-/// session 16's whole-frame savings, the README's band table).
+/// +15.0 % and 48 gave +13.9 % (callgrind, `band_cost probe`; +14.4 % on
+/// session 16's code, whose whole frame is cheaper: the README's band table).
 ///
 /// ```
 /// use fixshade::band::CARRY;
