@@ -530,6 +530,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         }
         let job = Job {
             mesh,
+            bb,
             h,
             runs,
             bounds: &bounds,
@@ -562,6 +563,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
 /// A frame's band loop: what the first pass found.
 struct Job<'a, 'm> {
     mesh: &'a Mesh<'m>,
+    /// The target's box, read once per draw: a target whose box changes
+    /// between calls cannot make a band disagree with its checked buffers.
+    bb: Rectangle,
     h: u32,
     runs: Runs,
     bounds: &'a [(i32, i32); CHUNKS],
@@ -594,7 +598,7 @@ impl Job<'_, '_> {
         V: Viewer,
         L: LightSet,
     {
-        let bb = target.bounding_box();
+        let bb = self.bb;
         let (w, height) = (bb.size.width, bb.size.height);
         let (indices, per) = (self.mesh.indices, self.runs.per);
         let mut y0 = 0u32;

@@ -160,13 +160,12 @@ impl Rgb {
         self.c[0] == 0 && self.c[1] == 0 && self.c[2] == 0
     }
 
-    /// The channels scaled by `num / den` (used for the k × k samples of an
-    /// area light), rounded to nearest and clamped to [`RGB_MAX`] like every
+    /// The channels scaled by `num / den`, rounded to nearest and clamped to [`RGB_MAX`] like every
     /// channel. `den == 0` gives black.
     ///
     /// ```
     /// use fixshade::{color::RGB_MAX, Rgb};
-    /// // A 2 × 2 area light: each sample carries a quarter.
+    /// // A quarter:
     /// assert_eq!(Rgb::WHITE.scaled(1, 4).to_bits(), [1 << 14; 3]);
     /// // 1.5 → 2, 0.5 → 1
     /// assert_eq!(Rgb::from_bits(3, 1, 0).scaled(1, 2).to_bits(), [2, 1, 0]);

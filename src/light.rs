@@ -1341,7 +1341,7 @@ impl<A: Falloff> AreaLight<A> {
 /// // 4 × 4 samples, all at the centre (zero edges), 1/16 each: as one point light.
 /// let area = AreaLight::new([0.0, 0.0, 2.0], [0.0; 3], [0.0; 3], 4).unwrap();
 /// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap();
-/// assert!(lit(&area).abs_diff(lit(&lamp)) <= 16);
+/// assert!(lit(&area).abs_diff(lit(&lamp)) <= 1); // the sum is divided once
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedArea<A: Falloff> {
@@ -1372,26 +1372,16 @@ impl<A: Falloff> LightSet for AreaLight<A> {
             let off = (x + x.signum() * d / 2) / d;
             (c[i] as i128 + off).clamp(-(WIDE_LIMIT as i128), WIDE_LIMIT as i128) as i64
         });
-        let k2 = (k * k) as u32;
         PreparedArea {
             first,
             step_u: u.map(|x| div(x, k)),
             step_v: v.map(|x| div(x, k)),
             k: k as u8,
-            gains: Self::scaled_gains(self, kd, ks, k2),
+            // The whole light's gains: the 1/k² share is applied once to
+            // the sum (see `PreparedArea::shade`).
+            gains: Gains::new(self.diffuse, self.specular, kd, ks),
             att: self.attenuation.prepare(),
         }
-    }
-}
-
-impl<A: Falloff> AreaLight<A> {
-    fn scaled_gains(&self, kd: Rgb, ks: Rgb, k2: u32) -> Gains {
-        Gains::new(
-            self.diffuse.scaled(1, k2),
-            self.specular.scaled(1, k2),
-            kd,
-            ks,
-        )
     }
 }
 
@@ -1411,16 +1401,38 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
             delta_cutoff: 0,
             exponent: Exponent::ZERO,
         };
+        // Each sample adds the whole light's contribution, rounded to Q.16
+        // (error ≤ ½ unit); the sum is divided by k² once, rounded: the
+        // mean of the k² roundings plus the division's stays within 1 Q.16
+        // unit (2⁻¹⁶), for every k, where a share of 1/k² in each sample's
+        // gain would add up to k²/2 units.
+        //
+        // Ranges: a gain is at most 256 (Gain::from_q32), so one sample
+        // adds at most 2 · 256 · 2¹⁶ = 2²⁵ (diffuse and specular); a row of
+        // k ≤ 64 samples at most 2³¹, so `row_sum` never saturates; k rows
+        // at most 2³⁷ in u64.
+        let k = self.k as u64;
+        let mut sum = [0u64; 3];
         let mut row = self.first;
         for _ in 0..self.k {
             let mut pos = row;
+            let mut row_sum = [0u32; 3];
             for _ in 0..self.k {
                 if let Some((l, sf)) = point_factor::<A, false>(ctx, &pos, &self.att, &no_cone) {
-                    add_light::<S>(ctx, l, sf, &self.gains, acc);
+                    add_light::<S>(ctx, l, sf, &self.gains, &mut row_sum);
                 }
                 pos = [0, 1, 2].map(|i| step_wide(pos[i], self.step_v[i]));
             }
+            for (s, r) in sum.iter_mut().zip(row_sum) {
+                *s += r as u64;
+            }
             row = [0, 1, 2].map(|i| step_wide(row[i], self.step_u[i]));
+        }
+        let k2 = k * k;
+        for (a, s) in acc.iter_mut().zip(sum) {
+            // (2^37 + 2^11) / k² < 2^32 for k ≥ 2; for k = 1 the sum is a
+            // single sample, below 2^26.
+            *a = a.saturating_add(((s + k2 / 2) / k2) as u32);
         }
     }
 }

@@ -986,3 +986,108 @@ fn draw_counts_saturate() {
     assert_eq!(stats.pixels, u32::MAX);
     assert!(t.runs >= side as u64, "a run or two a row");
 }
+
+/// A target whose bounding box grows after its first answer: 16 × 16 on
+/// the first call, 64 × 64 on every later one.
+struct Growing {
+    calls: core::cell::Cell<u32>,
+    runs: u64,
+}
+
+impl Dimensions for Growing {
+    fn bounding_box(&self) -> Rectangle {
+        let n = self.calls.get();
+        self.calls.set(n + 1);
+        let side = if n == 0 { 16 } else { 64 };
+        Rectangle::new(Point::zero(), Size::new(side, side))
+    }
+}
+
+impl DrawTarget for Growing {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        px: I,
+    ) -> Result<(), Self::Error> {
+        // Every pixel inside the box the draw read first.
+        for Pixel(p, _) in px {
+            assert!((0..16).contains(&p.x) && (0..16).contains(&p.y), "{p:?}");
+        }
+        self.runs += 1;
+        Ok(())
+    }
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, c: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Rgb565>,
+    {
+        let first = Rectangle::new(Point::zero(), Size::new(16, 16));
+        assert_eq!(area.intersection(&first), *area, "{area:?}");
+        assert_eq!(
+            c.into_iter().count() as u32,
+            area.size.width * area.size.height
+        );
+        self.runs += 1;
+        Ok(())
+    }
+}
+
+/// A draw reads the target's box once and keeps to it: a target whose box
+/// changes between calls neither panics a draw (the bands were checked
+/// against the first box and sliced with the second) nor receives pixels
+/// outside the box the draw began with.
+#[test]
+fn target_box_read_once() {
+    let (p, i) = full_screen_quad();
+    let mesh = Mesh::new(&p, &i);
+    let r = facing_renderer();
+    let mut cache = [CachedVertex::default(); 4];
+    let mut band_cache = [fixshade::band::BandVertex::default(); 4];
+    let mut z = [0u16; 16 * 16];
+    for height in [1, 4, 16] {
+        let mut colour = [0u16; 16 * 16];
+        let mut bands = Bands {
+            colour: &mut colour[..16 * height as usize],
+            height,
+            background: Rgb565::BLACK,
+        };
+        let mut t = Growing {
+            calls: 0.into(),
+            runs: 0,
+        };
+        let s = r
+            .draw_bands::<Gouraud, _, _, _>(
+                &mesh,
+                &mut t,
+                &mut bands,
+                &mut NoDepth,
+                &mut Recomputed,
+            )
+            .unwrap();
+        assert_eq!((s.pixels, t.runs), (256, 16 / height as u64));
+        let mut t = Growing {
+            calls: 0.into(),
+            runs: 0,
+        };
+        let mut zb = fixshade::depth::DepthBand::new(&mut z);
+        let s = r
+            .draw_bands::<PhongShading, _, _, _>(
+                &mesh,
+                &mut t,
+                &mut bands,
+                &mut zb,
+                &mut fixshade::band::Cached(&mut band_cache),
+            )
+            .unwrap();
+        assert_eq!(s.pixels, 256);
+    }
+    let mut t = Growing {
+        calls: 0.into(),
+        runs: 0,
+    };
+    let s = r
+        .draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
+        .unwrap();
+    assert_eq!(s.pixels, 256);
+    assert!(t.runs > 0);
+}

@@ -178,3 +178,53 @@ fn two_sided_open_mesh() {
         assert_within_bound(&format!("two-sided torus {shading:?}"), &e);
     }
 }
+
+/// Area lights of every sample count the API accepts, in Gouraud and Phong
+/// shading: k² samples, each rounded, add up to no more than the bound (a
+/// share of 1/k² folded into each sample's gain drifted past 1 LSB from
+/// k = 64 on). A zero-extent light, where every sample sits at the centre,
+/// and a panel of extent 0.5, under a dim light and a bright one.
+#[test]
+fn area_lights_up_to_the_largest_k() {
+    use fixshade::light::AreaLight;
+    let camera = CameraDesc {
+        eye: [0.0, 0.0, 2.6],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        near: 0.1,
+        far: 20.0,
+        projection: Projection::Perspective { fovy_deg: 40.0 },
+    };
+    let mut ks = vec![1, 2, 16, 64, u32::from(AreaLight::MAX_K)];
+    ks.dedup();
+    for k in ks {
+        for (extent, intensity) in [(0.0, 1.0), (0.5, 0.25), (0.5, 1.0)] {
+            let mut s = SceneDesc::new(40, 30, camera.clone(), generate::sphere(12, 6, 1.0));
+            s.material.ambient = [0.0; 3];
+            s.material.diffuse = [0.8; 3];
+            s.material.specular = [0.3; 3];
+            s.material.shininess = 16.0;
+            s.global_ambient = [0.0; 3];
+            s.lights = vec![LightDesc::Area {
+                center: [0.4, 0.3, 2.0],
+                edge_u: [extent, 0.0, 0.0],
+                edge_v: [0.0, extent, 0.0],
+                samples_k: k,
+                diffuse: [intensity; 3],
+                specular: [intensity; 3],
+                attenuation: [1.0, 0.0, 0.0],
+            }];
+            for shading in [Shading::Gouraud, Shading::Phong] {
+                s.shading = shading;
+                let name = format!("area k={k} extent {extent} intensity {intensity} {shading:?}");
+                let (e, _) = kernel_vs_reference(&s);
+                assert_within_bound(&name, &e);
+                assert!(
+                    e.exact_share >= 0.99,
+                    "{name}: exact share {:.4}",
+                    e.exact_share
+                );
+            }
+        }
+    }
+}
