@@ -14,10 +14,11 @@
 //! assert_eq!(sphere(48, 24, 1.0).indices.len(), 48 * (2 * 24 - 2));
 //! ```
 
-use crate::scene_desc::MeshDesc;
+use crate::scene_desc::{MeshDesc, MAX_VERTICES};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::fmt;
+use std::io::BufRead;
 
 /// Largest segment count accepted by the generators; larger values are clamped.
 ///
@@ -31,11 +32,42 @@ use std::fmt;
 /// ```
 pub const MAX_SEGMENTS: u32 = 4096;
 
+/// The most segments a [`plane`] side may have: `(n + 1)²` vertices must
+/// stay within [`MAX_VERTICES`].
+///
+/// ```
+/// use fixshade::generate::{plane, MAX_PLANE_SEGMENTS};
+/// use fixshade::scene_desc::MAX_VERTICES;
+/// assert_eq!(plane(1.0, MAX_PLANE_SEGMENTS).positions.len(), MAX_VERTICES);
+/// assert_eq!(plane(1.0, 1000).positions.len(), MAX_VERTICES); // clamped
+/// ```
+pub const MAX_PLANE_SEGMENTS: u32 = 255;
+
+/// The second side of a `(a + 1) × (b + 1)` vertex grid, lowered so that the
+/// grid holds at most [`MAX_VERTICES`] vertices (with `a ≤ MAX_SEGMENTS`,
+/// at least 14 remain: `65536 / 4097 − 1`).
+///
+/// ```
+/// use fixshade::generate::{fit_grid, MAX_SEGMENTS};
+/// assert_eq!(fit_grid(64, 32), 32);
+/// assert_eq!(fit_grid(255, 1000), 255); // 256 × 256 = 65536
+/// assert_eq!(fit_grid(MAX_SEGMENTS, MAX_SEGMENTS), 14);
+/// ```
+pub const fn fit_grid(a: u32, b: u32) -> u32 {
+    let most = (MAX_VERTICES as u32 / a.saturating_add(1)).saturating_sub(1);
+    if b < most {
+        b
+    } else {
+        most
+    }
+}
+
 /// A UV sphere of the given radius centred on the origin.
 ///
 /// `lon` segments around the Y axis (clamped to `3..=`[`MAX_SEGMENTS`]) and
 /// `lat` segments from the +Y pole to the −Y pole (clamped to
-/// `2..=`[`MAX_SEGMENTS`]). Vertices form a `(lat + 1) × (lon + 1)` grid (the
+/// `2..=`[`MAX_SEGMENTS`], then lowered by [`fit_grid`] to at most
+/// [`MAX_VERTICES`] vertices). Vertices form a `(lat + 1) × (lon + 1)` grid (the
 /// seam column and the pole vertices are duplicated); the degenerate triangles
 /// touching the poles are skipped, leaving `lon · (2·lat − 2)` triangles.
 /// Normals are the unit directions from the centre (`position / radius` for a
@@ -48,7 +80,7 @@ pub const MAX_SEGMENTS: u32 = 4096;
 /// ```
 pub fn sphere(lon: u32, lat: u32, radius: f64) -> MeshDesc {
     let lon = lon.clamp(3, MAX_SEGMENTS);
-    let lat = lat.clamp(2, MAX_SEGMENTS);
+    let lat = fit_grid(lon, lat.clamp(2, MAX_SEGMENTS));
     let cols = lon + 1;
     let mut positions = Vec::with_capacity(((lat + 1) * cols) as usize);
     let mut normals = Vec::with_capacity(positions.capacity());
@@ -63,7 +95,8 @@ pub fn sphere(lon: u32, lat: u32, radius: f64) -> MeshDesc {
             positions.push([radius * n[0], radius * n[1], radius * n[2]]);
         }
     }
-    let at = |j: u32, i: u32| j * cols + i;
+    // (lat + 1)·cols ≤ MAX_VERTICES (fit_grid): every index fits u16.
+    let at = |j: u32, i: u32| (j * cols + i) as u16;
     let mut indices = Vec::with_capacity((lon * (2 * lat - 2)) as usize);
     for j in 0..lat {
         for i in 0..lon {
@@ -107,7 +140,7 @@ pub fn cube(size: f64) -> MeshDesc {
     let mut normals = Vec::with_capacity(24);
     let mut indices = Vec::with_capacity(12);
     for (n, u, v) in faces {
-        let base = positions.len() as u32;
+        let base = positions.len() as u16; // below 24
         for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
             positions.push([
                 h * (n[0] + su * u[0] + sv * v[0]),
@@ -130,7 +163,8 @@ pub fn cube(size: f64) -> MeshDesc {
 /// +Z sees the hole), ring radius `big_r`, tube radius `small_r`.
 ///
 /// `u` segments around the ring and `v` around the tube, each clamped to
-/// `3..=`[`MAX_SEGMENTS`]; `(u + 1) · (v + 1)` vertices (seams duplicated),
+/// `3..=`[`MAX_SEGMENTS`] (`v` then lowered by [`fit_grid`] to at most
+/// [`MAX_VERTICES`] vertices); `(u + 1) · (v + 1)` vertices (seams duplicated),
 /// `2 · u · v` triangles. Normals point away from the tube's centre line.
 ///
 /// ```
@@ -139,7 +173,7 @@ pub fn cube(size: f64) -> MeshDesc {
 /// ```
 pub fn torus(big_r: f64, small_r: f64, u: u32, v: u32) -> MeshDesc {
     let u = u.clamp(3, MAX_SEGMENTS);
-    let v = v.clamp(3, MAX_SEGMENTS);
+    let v = fit_grid(u, v.clamp(3, MAX_SEGMENTS));
     let cols = v + 1;
     let mut positions = Vec::with_capacity(((u + 1) * cols) as usize);
     let mut normals = Vec::with_capacity(positions.capacity());
@@ -158,7 +192,8 @@ pub fn torus(big_r: f64, small_r: f64, u: u32, v: u32) -> MeshDesc {
             ]);
         }
     }
-    let at = |i: u32, j: u32| i * cols + j;
+    // (u + 1)·cols ≤ MAX_VERTICES (fit_grid): every index fits u16.
+    let at = |i: u32, j: u32| (i * cols + j) as u16;
     let mut indices = Vec::with_capacity((2 * u * v) as usize);
     for i in 0..u {
         for j in 0..v {
@@ -182,7 +217,7 @@ pub fn torus(big_r: f64, small_r: f64, u: u32, v: u32) -> MeshDesc {
 /// assert_eq!((p.positions.len(), p.indices.len()), (25, 32));
 /// ```
 pub fn plane(size: f64, segments: u32) -> MeshDesc {
-    let n = segments.clamp(1, MAX_SEGMENTS);
+    let n = segments.clamp(1, MAX_PLANE_SEGMENTS);
     let cols = n + 1;
     let mut positions = Vec::with_capacity((cols * cols) as usize);
     for j in 0..=n {
@@ -193,7 +228,8 @@ pub fn plane(size: f64, segments: u32) -> MeshDesc {
         }
     }
     let normals = vec![[0.0, 0.0, 1.0]; positions.len()];
-    let at = |i: u32, j: u32| j * cols + i;
+    // cols² ≤ 256² = MAX_VERTICES: every index fits u16.
+    let at = |i: u32, j: u32| (j * cols + i) as u16;
     let mut indices = Vec::with_capacity((2 * n * n) as usize);
     for j in 0..n {
         for i in 0..n {
@@ -256,8 +292,15 @@ pub enum ObjErrorKind {
         /// How many such elements exist.
         count: usize,
     },
-    /// More vertices than `u32` indices can address.
+    /// More than [`MAX_VERTICES`] positions, normals or resulting
+    /// vertices.
     TooManyVertices,
+    /// A line longer than [`MAX_OBJ_LINE`] bytes.
+    LineTooLong,
+    /// A line that is not UTF-8.
+    NotUtf8,
+    /// The text could not be read (the operating system's message).
+    Read(String),
 }
 
 impl fmt::Display for ObjError {
@@ -274,7 +317,10 @@ impl fmt::Display for ObjError {
             ObjErrorKind::IndexOutOfRange { what, index, count } => {
                 write!(f, "{what} index {index} out of range ({count} defined)")
             }
-            ObjErrorKind::TooManyVertices => write!(f, "too many vertices for u32 indices"),
+            ObjErrorKind::TooManyVertices => write!(f, "more than {MAX_VERTICES} vertices"),
+            ObjErrorKind::LineTooLong => write!(f, "longer than {MAX_OBJ_LINE} bytes"),
+            ObjErrorKind::NotUtf8 => write!(f, "not UTF-8 text"),
+            ObjErrorKind::Read(m) => write!(f, "cannot read: {m}"),
         }
     }
 }
@@ -282,23 +328,30 @@ impl fmt::Display for ObjError {
 impl std::error::Error for ObjError {}
 
 /// One face vertex as written: position and optional normal index, both
-/// already resolved to 0-based (unchecked for positive indices).
+/// resolved to 0-based and checked against the elements defined so far.
 #[derive(Clone, Copy)]
 struct FaceVertex {
-    pos: i64,
-    normal: Option<i64>,
+    pos: u16,
+    normal: Option<u16>,
 }
+
+/// The longest line an OBJ file may have, in bytes (a longer one is an
+/// error, found before it is kept whole).
+pub const MAX_OBJ_LINE: usize = 64 * 1024;
 
 /// Parses a Wavefront OBJ text: `v`, `vn` and `f` lines; every other
 /// statement (`vt`, `o`, `g`, `s`, `usemtl`, comments…) is ignored.
 ///
-/// Face vertices may be `i`, `i/j`, `i//k` or `i/j/k`; negative indices count
-/// back from the last element defined before the face. Faces with more than
-/// three vertices are fanned from their first vertex. If every face vertex
-/// has a normal, vertices are re-indexed so that each distinct
-/// (position, normal) pair becomes one vertex and `normals` is `Some`
-/// (normals as written, not renormalised); otherwise `normals` is `None` and
-/// positions keep the file's order. Texture indices are parsed but unused.
+/// Face vertices may be `i`, `i/j`, `i//k` or `i/j/k`; an index refers to an
+/// element defined before the face, and a negative one counts back from
+/// the last of them. Faces with more than three vertices are fanned from
+/// their first vertex. If every face vertex has a normal, vertices are
+/// re-indexed so that each distinct (position, normal) pair becomes one
+/// vertex and `normals` is `Some` (normals as written, not renormalised);
+/// otherwise `normals` is `None` and positions keep the file's order.
+/// Texture indices are parsed but unused. At most
+/// [`MAX_VERTICES`] positions, normals and resulting vertices; lines of at
+/// most [`MAX_OBJ_LINE`] bytes.
 ///
 /// ```
 /// let m = fixshade::generate::load_obj(
@@ -308,96 +361,179 @@ struct FaceVertex {
 /// assert!(m.normals.is_none());
 /// ```
 pub fn load_obj(text: &str) -> Result<MeshDesc, ObjError> {
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut normals: Vec<[f64; 3]> = Vec::new();
-    // Faces as (line number, fanned triangles).
-    let mut faces: Vec<(usize, [FaceVertex; 3])> = Vec::new();
+    read_obj(|| Ok(text.as_bytes()))
+}
 
-    for (number, raw) in text.lines().enumerate() {
-        let line = number + 1;
-        let err = |kind| ObjError { line, kind };
-        let content = raw.split('#').next().unwrap_or("");
-        let mut tokens = content.split_whitespace();
+/// As [`load_obj`], reading the text from `open()` twice: once to count the
+/// elements, once to read them into vectors of exactly that size. The mesh
+/// then takes at most 6 bytes per triangle (as few as 2 bytes of text: a
+/// fanned face vertex `1 `), 12 with normals (at least 5 bytes: `1//1 `),
+/// and 24 per position and normal (at least 8 bytes of text each), plus,
+/// for re-indexed normals, at most
+/// [`MAX_VERTICES`] entries of a map and two vectors: below 3 bytes of
+/// memory per byte of text, plus 6 MiB.
+///
+/// ```
+/// let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+/// let m = fixshade::generate::read_obj(|| Ok(obj.as_bytes())).unwrap();
+/// assert_eq!((m.positions.len(), m.indices.len()), (3, 1));
+/// ```
+pub fn read_obj<R: BufRead>(
+    mut open: impl FnMut() -> std::io::Result<R>,
+) -> Result<MeshDesc, ObjError> {
+    let io = |line, e: std::io::Error| ObjError {
+        line,
+        kind: ObjErrorKind::Read(e.to_string()),
+    };
+    // Pass 1: counts only (errors are found, with their lines, in pass 2).
+    let (mut n_pos, mut n_nrm, mut n_tri) = (0usize, 0usize, 0usize);
+    // Whether every face vertex names a normal (`i//k`, `i/j/k`).
+    let mut all_normals = true;
+    let mut buf = Vec::new();
+    let mut input = open().map_err(|e| io(0, e))?;
+    let mut line = 0;
+    while let Some(text) = next_line(&mut input, &mut buf, &mut line)? {
+        let mut tokens = text.split('#').next().unwrap_or("").split_whitespace();
         match tokens.next() {
-            Some("v") => positions.push(parse_xyz(&mut tokens).map_err(err)?),
-            Some("vn") => normals.push(parse_xyz(&mut tokens).map_err(err)?),
+            Some("v") => n_pos += 1,
+            Some("vn") => n_nrm += 1,
             Some("f") => {
-                let mut verts = Vec::new();
+                let mut n = 0usize;
+                for t in tokens {
+                    n += 1;
+                    all_normals &= t.split('/').nth(2).is_some_and(|k| !k.is_empty());
+                }
+                n_tri += n.saturating_sub(2);
+            }
+            _ => {}
+        }
+    }
+    let mut positions: Vec<[f64; 3]> = Vec::with_capacity(n_pos.min(MAX_VERTICES));
+    let mut normals: Vec<[f64; 3]> = Vec::with_capacity(n_nrm.min(MAX_VERTICES));
+    // Triangles as position indices, and as normal indices while every face
+    // vertex so far has one (dropped at the first that has none; not kept at
+    // all where the first pass saw one without).
+    let mut tris: Vec<[u16; 3]> = Vec::with_capacity(n_tri);
+    let mut ntris: Option<Vec<[u16; 3]>> = all_normals.then(|| Vec::with_capacity(n_tri));
+    let mut verts: Vec<FaceVertex> = Vec::new();
+    let mut input = open().map_err(|e| io(0, e))?;
+    let mut line = 0;
+    while let Some(text) = next_line(&mut input, &mut buf, &mut line)? {
+        let err = |kind| ObjError { line, kind };
+        let mut tokens = text.split('#').next().unwrap_or("").split_whitespace();
+        match tokens.next() {
+            Some("v") => {
+                if positions.len() == MAX_VERTICES {
+                    return Err(err(ObjErrorKind::TooManyVertices));
+                }
+                positions.push(parse_xyz(&mut tokens).map_err(err)?);
+            }
+            Some("vn") => {
+                if normals.len() == MAX_VERTICES {
+                    return Err(err(ObjErrorKind::TooManyVertices));
+                }
+                normals.push(parse_xyz(&mut tokens).map_err(err)?);
+            }
+            Some("f") => {
+                verts.clear();
                 for t in tokens {
                     verts.push(parse_face_vertex(t, positions.len(), normals.len()).map_err(err)?);
                 }
                 if verts.len() < 3 {
                     return Err(err(ObjErrorKind::TooFewFaceVertices(verts.len())));
                 }
+                if verts.iter().any(|v| v.normal.is_none()) {
+                    ntris = None;
+                }
                 for k in 1..verts.len() - 1 {
-                    faces.push((line, [verts[0], verts[k], verts[k + 1]]));
+                    let tri = [verts[0], verts[k], verts[k + 1]];
+                    tris.push(tri.map(|v| v.pos));
+                    if let Some(n) = &mut ntris {
+                        n.push(tri.map(|v| v.normal.unwrap_or(0)));
+                    }
                 }
             }
             _ => {}
         }
     }
-
-    // Check every index now that all elements are known.
-    for (line, tri) in &faces {
-        for fv in tri {
-            check_index("position", fv.pos, positions.len(), *line)?;
-            if let Some(n) = fv.normal {
-                check_index("normal", n, normals.len(), *line)?;
-            }
-        }
-    }
-    let too_many = |line| ObjError {
-        line,
-        kind: ObjErrorKind::TooManyVertices,
-    };
-    if positions.len() > u32::MAX as usize {
-        return Err(too_many(0));
-    }
-
-    let all_normals = !faces.is_empty()
-        && faces
-            .iter()
-            .all(|(_, tri)| tri.iter().all(|fv| fv.normal.is_some()));
-
-    if !all_normals {
-        let indices = faces
-            .iter()
-            .map(|(_, tri)| tri.map(|fv| fv.pos as u32))
-            .collect();
+    let ntris = ntris.filter(|_| !tris.is_empty());
+    let Some(ntris) = ntris else {
         return Ok(MeshDesc {
             positions,
             normals: None,
-            indices,
+            indices: tris,
         });
-    }
-
-    let mut map: HashMap<(i64, i64), u32> = HashMap::new();
+    };
+    // Each distinct (position, normal) pair becomes one vertex, numbered in
+    // order of first use, in place of the position index.
+    let mut map: HashMap<(u16, u16), u16> = HashMap::new();
     let mut out_pos = Vec::new();
     let mut out_nrm = Vec::new();
-    let mut indices = Vec::with_capacity(faces.len());
-    for (line, tri) in &faces {
-        let mut out = [0u32; 3];
-        for (slot, fv) in out.iter_mut().zip(tri) {
-            let n = fv.normal.unwrap_or(0);
-            let key = (fv.pos, n);
+    for (tri, ntri) in tris.iter_mut().zip(&ntris) {
+        for (slot, &n) in tri.iter_mut().zip(ntri) {
+            let key = (*slot, n);
             *slot = match map.get(&key) {
                 Some(&i) => i,
                 None => {
-                    let i = u32::try_from(out_pos.len()).map_err(|_| too_many(*line))?;
-                    out_pos.push(positions[fv.pos as usize]);
-                    out_nrm.push(normals[n as usize]);
+                    let i = u16::try_from(out_pos.len()).map_err(|_| ObjError {
+                        line: 0,
+                        kind: ObjErrorKind::TooManyVertices,
+                    })?;
+                    out_pos.push(positions[key.0 as usize]);
+                    out_nrm.push(normals[key.1 as usize]);
                     map.insert(key, i);
                     i
                 }
             };
         }
-        indices.push(out);
     }
     Ok(MeshDesc {
         positions: out_pos,
         normals: Some(out_nrm),
-        indices,
+        indices: tris,
     })
+}
+
+/// The next line of `input` (without its line break) as text, counting
+/// lines in `line`; `None` at the end. A line longer than
+/// [`MAX_OBJ_LINE`] or not UTF-8 is an error.
+fn next_line<'b>(
+    input: &mut impl BufRead,
+    buf: &'b mut Vec<u8>,
+    line: &mut usize,
+) -> Result<Option<&'b str>, ObjError> {
+    buf.clear();
+    *line += 1;
+    let err = |kind| ObjError { line: *line, kind };
+    loop {
+        let chunk = input
+            .fill_buf()
+            .map_err(|e| err(ObjErrorKind::Read(e.to_string())))?;
+        if chunk.is_empty() {
+            if buf.is_empty() {
+                return Ok(None);
+            }
+            break;
+        }
+        let (take, done) = match chunk.iter().position(|&b| b == b'\n') {
+            Some(i) => (i + 1, true),
+            None => (chunk.len(), false),
+        };
+        if buf.len() + take > MAX_OBJ_LINE + 1 {
+            return Err(err(ObjErrorKind::LineTooLong));
+        }
+        buf.extend_from_slice(&chunk[..take]);
+        input.consume(take);
+        if done {
+            break;
+        }
+    }
+    while buf.last().is_some_and(|&b| b == b'\n' || b == b'\r') {
+        buf.pop();
+    }
+    std::str::from_utf8(buf)
+        .map(Some)
+        .map_err(|_| err(ObjErrorKind::NotUtf8))
 }
 
 fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<[f64; 3], ObjErrorKind> {
@@ -415,24 +551,25 @@ fn parse_xyz<'a>(tokens: &mut impl Iterator<Item = &'a str>) -> Result<[f64; 3],
     Ok(v)
 }
 
-/// Resolves a 1-based (or negative, relative) OBJ index to 0-based.
-fn resolve(index: i64, count: usize) -> Result<i64, ObjErrorKind> {
-    match index {
-        0 => Err(ObjErrorKind::ZeroIndex),
-        i if i > 0 => Ok(i - 1),
-        i => {
-            let r = count as i64 + i;
-            if r < 0 {
-                Err(ObjErrorKind::IndexOutOfRange {
-                    what: "relative",
-                    index: i,
-                    count,
-                })
-            } else {
-                Ok(r)
-            }
-        }
+/// Resolves a 1-based (or negative, relative) OBJ index to 0-based,
+/// checked against the `count ≤ MAX_VERTICES` elements defined so far (so
+/// it fits `u16`).
+fn resolve(index: i64, count: usize) -> Result<u16, ObjErrorKind> {
+    let out = || ObjErrorKind::IndexOutOfRange {
+        what: "relative",
+        index,
+        count,
+    };
+    let r = match index {
+        0 => return Err(ObjErrorKind::ZeroIndex),
+        i if i > 0 => i - 1,
+        // |i| ≤ i64::MAX here (i > i64::MIN would not matter: count is small).
+        i => (count as i64).checked_add(i).ok_or_else(out)?,
+    };
+    if r < 0 || r as u64 >= count as u64 {
+        return Err(out());
     }
+    Ok(r as u16)
 }
 
 fn parse_face_vertex(t: &str, n_pos: usize, n_nrm: usize) -> Result<FaceVertex, ObjErrorKind> {
@@ -470,20 +607,5 @@ fn relabel(e: ObjErrorKind, what: &'static str, index: i64, count: usize) -> Obj
             ObjErrorKind::IndexOutOfRange { what, index, count }
         }
         other => other,
-    }
-}
-
-fn check_index(what: &'static str, i: i64, count: usize, line: usize) -> Result<(), ObjError> {
-    if i >= 0 && (i as usize) < count {
-        Ok(())
-    } else {
-        Err(ObjError {
-            line,
-            kind: ObjErrorKind::IndexOutOfRange {
-                what,
-                index: i + 1,
-                count,
-            },
-        })
     }
 }

@@ -47,6 +47,62 @@ use std::fmt;
 /// ```
 pub const MAX_DIMENSION: u32 = 8192;
 
+/// The most vertices a mesh may have: as many as `u16` indices reach, the
+/// kernel's index format.
+///
+/// ```
+/// use fixshade::scene_desc::{SceneError, MAX_VERTICES};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(8, 8, 12, 6);
+/// s.mesh.positions.resize(MAX_VERTICES, [0.0; 3]);
+/// s.mesh.normals = None;
+/// assert!(s.validate().is_ok());
+/// s.mesh.positions.push([0.0; 3]);
+/// assert_eq!(s.validate(), Err(SceneError::TooManyVertices { count: MAX_VERTICES + 1 }));
+/// assert_eq!(s.validate().unwrap_err().to_string(), "mesh.positions: 65537 vertices, more than 65536");
+/// ```
+pub const MAX_VERTICES: usize = 65536;
+
+/// The most light samples a shaded point may take, summed over the lights
+/// (an area light of `k × k` samples takes `k²`, any other light 1): one
+/// area light of 64 × 64, or 64 lights of 8 × 8.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, MAX_LIGHT_SAMPLES};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(32, 24, 12, 6);
+/// let area = |k| LightDesc::Area { center: [0.0, 3.0, 0.0], edge_u: [1.0, 0.0, 0.0],
+///     edge_v: [0.0, 0.0, 1.0], samples_k: k, diffuse: [1.0; 3], specular: [1.0; 3],
+///     attenuation: [1.0, 0.0, 0.0] };
+/// s.lights = vec![area(64)];
+/// assert!(s.validate().is_ok());
+/// s.lights = vec![area(64); 2];
+/// let err = s.validate().unwrap_err().to_string();
+/// assert_eq!(err, "lights: 8192 light samples a shaded point, more than 4096");
+/// # assert_eq!(MAX_LIGHT_SAMPLES, 4096);
+/// ```
+pub const MAX_LIGHT_SAMPLES: u64 = 4096;
+
+/// The most light evaluations a scene may ask for in a frame, counted as
+/// its light samples ([`SceneDesc::light_samples`]) times its pixels,
+/// vertices and triangles (a bound on what flat, Gouraud and Phong shading
+/// evaluate): 2²⁸, a frame of 320 × 240 pixels with 3 400 samples. Each
+/// evaluation is some hundreds of instructions in the kernel and in the
+/// reference, so a frame stays within about a minute on a desktop.
+///
+/// ```
+/// use fixshade::scene_desc::{LightDesc, MAX_LIGHT_EVALUATIONS};
+/// use fixshade::standard_scenes::sphere_scene;
+/// let mut s = sphere_scene(1024, 1024, 12, 6);
+/// s.lights = vec![LightDesc::Area { center: [0.0, 3.0, 0.0], edge_u: [1.0, 0.0, 0.0],
+///     edge_v: [0.0, 0.0, 1.0], samples_k: 64, diffuse: [1.0; 3], specular: [1.0; 3],
+///     attenuation: [1.0, 0.0, 0.0] }];
+/// let err = s.validate().unwrap_err().to_string();
+/// assert!(err.starts_with("lights: 4096 light samples at 1048"), "{err}");
+/// assert!(err.ends_with(&format!("more than {MAX_LIGHT_EVALUATIONS}")));
+/// ```
+pub const MAX_LIGHT_EVALUATIONS: u64 = 1 << 28;
+
 /// Largest accepted `samples_k` of an area light (it expands to `k²` point lights).
 ///
 /// ```
@@ -230,7 +286,8 @@ pub struct MeshDesc {
     /// them ([`crate::reference::vertex_normals`]).
     pub normals: Option<Vec<[f64; 3]>>,
     /// Triangles as vertex indices; front faces are counter-clockwise.
-    pub indices: Vec<[u32; 3]>,
+    /// `u16`, as the kernel's: a mesh has at most [`MAX_VERTICES`] vertices.
+    pub indices: Vec<[u16; 3]>,
 }
 
 /// Surface material (SPEC.md section 3: `E`, `Ka`, `Kd`, `Ks`, `n`).
@@ -529,6 +586,56 @@ impl SceneDesc {
         for (i, light) in self.lights.iter().enumerate() {
             validate_light(i, light)?;
         }
+        self.validate_work()?;
+        crate::scene_kernel::check(self).map_err(SceneError::Kernel)
+    }
+
+    /// The light samples a shaded point takes: `k²` for an area light, 1
+    /// for any other (saturating).
+    ///
+    /// ```
+    /// use fixshade::scene_desc::LightDesc;
+    /// use fixshade::standard_scenes::sphere_scene;
+    /// let mut s = sphere_scene(8, 8, 12, 6);
+    /// s.lights = vec![LightDesc::point([0.0, 2.0, 0.0]); 3];
+    /// assert_eq!(s.light_samples(), 3);
+    /// ```
+    pub fn light_samples(&self) -> u64 {
+        self.lights
+            .iter()
+            .map(|l| match l {
+                LightDesc::Area { samples_k, .. } => u64::from(*samples_k).pow(2),
+                _ => 1,
+            })
+            .fold(0u64, u64::saturating_add)
+    }
+
+    /// The bound on a frame's work, [`MAX_LIGHT_SAMPLES`] and
+    /// [`MAX_LIGHT_EVALUATIONS`].
+    fn validate_work(&self) -> Result<(), SceneError> {
+        let samples = self.light_samples();
+        if samples > MAX_LIGHT_SAMPLES {
+            return Err(SceneError::Limit {
+                field: "lights".into(),
+                message: format!(
+                    "{samples} light samples a shaded point, more than {MAX_LIGHT_SAMPLES}"
+                ),
+            });
+        }
+        let points = u64::from(self.width) * u64::from(self.height)
+            + self.mesh.positions.len() as u64
+            + self.mesh.indices.len() as u64;
+        let evaluations = points.saturating_mul(samples);
+        if evaluations > MAX_LIGHT_EVALUATIONS {
+            return Err(SceneError::Limit {
+                field: "lights".into(),
+                message: format!(
+                    "{samples} light samples at {points} points (pixels, vertices and \
+                     triangles) make {evaluations} light evaluations a frame, more than \
+                     {MAX_LIGHT_EVALUATIONS}"
+                ),
+            });
+        }
         Ok(())
     }
 
@@ -603,6 +710,11 @@ impl SceneDesc {
 
     fn validate_mesh(&self) -> Result<(), SceneError> {
         let mesh = &self.mesh;
+        if mesh.positions.len() > MAX_VERTICES {
+            return Err(SceneError::TooManyVertices {
+                count: mesh.positions.len(),
+            });
+        }
         for (i, p) in mesh.positions.iter().enumerate() {
             finite3(&format!("mesh.positions[{i}]"), p)?;
         }
@@ -623,7 +735,7 @@ impl SceneDesc {
                 if index as usize >= count {
                     return Err(SceneError::IndexOutOfRange {
                         triangle: t,
-                        index,
+                        index: u32::from(index),
                         vertex_count: count,
                     });
                 }
@@ -790,6 +902,22 @@ pub enum SceneError {
         /// Number of normals.
         normals: usize,
     },
+    /// A limit on the work a frame asks for ([`MAX_LIGHT_SAMPLES`],
+    /// [`MAX_LIGHT_EVALUATIONS`]).
+    Limit {
+        /// The key that asks for it.
+        field: String,
+        /// What exceeds which limit.
+        message: String,
+    },
+    /// The kernel cannot render the scene (a value outside its formats, a
+    /// camera or projection that does not fit, …).
+    Kernel(crate::scene_kernel::KernelSceneError),
+    /// More than [`MAX_VERTICES`] positions.
+    TooManyVertices {
+        /// How many the mesh has.
+        count: usize,
+    },
     /// A triangle refers to a vertex that does not exist.
     IndexOutOfRange {
         /// The triangle (position in `mesh.indices`).
@@ -817,6 +945,12 @@ impl fmt::Display for SceneError {
             SceneError::NormalCount { positions, normals } => write!(
                 f,
                 "mesh.normals: {normals} normals for {positions} positions"
+            ),
+            SceneError::Limit { field, message } => write!(f, "{field}: {message}"),
+            SceneError::Kernel(e) => write!(f, "{e}"),
+            SceneError::TooManyVertices { count } => write!(
+                f,
+                "mesh.positions: {count} vertices, more than {MAX_VERTICES}"
             ),
             SceneError::IndexOutOfRange {
                 triangle,

@@ -39,10 +39,10 @@ use serde::de::DeserializeOwned;
 use serde::Deserialize;
 use serde_json::{Map, Value};
 
-use crate::generate::{self, ObjError, MAX_SEGMENTS};
+use crate::generate::{self, ObjError, MAX_PLANE_SEGMENTS, MAX_SEGMENTS};
 use crate::scene_desc::{
     CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc, SceneError, Shading,
-    SpecularModel, Viewer, DEFAULT_ATTENUATION, IDENTITY, WHITE,
+    SpecularModel, Viewer, DEFAULT_ATTENUATION, IDENTITY, MAX_VERTICES, WHITE,
 };
 
 /// Why a scene file was rejected. `Display` gives one line naming the key
@@ -113,25 +113,54 @@ impl SceneFileError {
 }
 
 impl fmt::Display for SceneFileError {
+    /// One line: what the file holds (keys, names, paths, numbers) is
+    /// echoed with its control characters escaped ([`one_line`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&one_line(&self.raw_message()))
+    }
+}
+
+impl SceneFileError {
+    fn raw_message(&self) -> String {
         match self {
             SceneFileError::Read { path, message } => {
-                write!(f, "cannot read {}: {message}", path.display())
+                format!("cannot read {}: {message}", path.display())
             }
-            SceneFileError::Syntax(message) => write!(f, "not valid JSON: {message}"),
+            SceneFileError::Syntax(message) => format!("not valid JSON: {message}"),
             SceneFileError::Key { key, message } if key.is_empty() => {
-                write!(f, "top level: {message}")
+                format!("top level: {message}")
             }
-            SceneFileError::Key { key, message } => write!(f, "{key}: {message}"),
+            SceneFileError::Key { key, message } => format!("{key}: {message}"),
             SceneFileError::ObjRead { path, message } => {
-                write!(f, "mesh.obj: cannot read {}: {message}", path.display())
+                format!("mesh.obj: cannot read {}: {message}", path.display())
             }
             SceneFileError::Obj { path, error } => {
-                write!(f, "mesh.obj: {}: {error}", path.display())
+                format!("mesh.obj: {}: {error}", path.display())
             }
-            SceneFileError::Invalid(e) => e.fmt(f),
+            SceneFileError::Invalid(e) => e.to_string(),
         }
     }
+}
+
+/// `text` with its control characters (line breaks, tabs, escape
+/// sequences) written as Rust escapes, so that what a file holds cannot
+/// break an error message over lines.
+///
+/// ```
+/// use fixshade::scene_file::one_line;
+/// assert_eq!(one_line("a\nb\u{1b}[2J"), "a\\nb\\u{1b}[2J");
+/// assert_eq!(one_line("lights[0].tÿpe"), "lights[0].tÿpe");
+/// ```
+pub fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 impl std::error::Error for SceneFileError {}
@@ -153,7 +182,7 @@ type Result<T> = std::result::Result<T, SceneFileError>;
 /// ```
 pub fn load_scene(path: impl AsRef<Path>) -> Result<SceneDesc> {
     let path = path.as_ref();
-    let text = std::fs::read_to_string(path).map_err(|e| SceneFileError::Read {
+    let input = open_regular(path).map_err(|e| SceneFileError::Read {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
@@ -161,7 +190,7 @@ pub fn load_scene(path: impl AsRef<Path>) -> Result<SceneDesc> {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    parse_scene(&text, base)
+    read_scene(input, base, path)
 }
 
 /// Parses a scene file's text; `base_dir` is the folder a relative
@@ -182,8 +211,34 @@ pub fn load_scene(path: impl AsRef<Path>) -> Result<SceneDesc> {
 /// assert!(err.to_string().starts_with("mesh.obj: cannot read no_such_dir/m.obj"), "{err}");
 /// ```
 pub fn parse_scene(json: &str, base_dir: &Path) -> Result<SceneDesc> {
-    let root: Value =
-        serde_json::from_str(json).map_err(|e| SceneFileError::Syntax(e.to_string()))?;
+    read_scene(json.as_bytes(), base_dir, Path::new("scene text"))
+}
+
+/// Reads a scene from `input` (`path` names it in errors) in one pass: the
+/// mesh's arrays go straight into their final types, everything else is
+/// kept as JSON values within fixed limits, so that reading takes at most
+/// 2.25 bytes of memory per byte of input (`mesh.indices`: 6 bytes a
+/// triangle for at least 8 bytes of text, with a vector's growth) plus
+/// 16 MiB (positions and normals: at most [`MAX_VERTICES`] of 24 bytes,
+/// with growth; the other values).
+fn read_scene(input: impl std::io::BufRead, base_dir: &Path, path: &Path) -> Result<SceneDesc> {
+    let mut reader = JsonReader::new(input);
+    let root = reader.value("", 0).and_then(|v| {
+        reader.expect_end()?;
+        Ok(v)
+    });
+    let root = match root {
+        Ok(v) => v,
+        Err(Stop::Syntax(m)) => return Err(SceneFileError::Syntax(m)),
+        Err(Stop::File(e)) => return Err(e),
+        Err(Stop::Io(e)) => {
+            return Err(SceneFileError::Read {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            })
+        }
+    };
+    let mut arrays = std::mem::take(&mut reader.arrays);
     let o = Obj::new(
         &root,
         String::new(),
@@ -209,7 +264,7 @@ pub fn parse_scene(json: &str, base_dir: &Path) -> Result<SceneDesc> {
     let width = o.req("width", uint)?;
     let height = o.req("height", uint)?;
     let camera = o.req("camera", camera)?;
-    let mesh = o.req("mesh", |v, p| mesh(v, p, base_dir))?;
+    let mesh = o.req("mesh", |v, p| mesh(v, p, base_dir, &mut arrays))?;
     let mut scene = SceneDesc::new(width, height, camera, mesh);
     scene.model = o.opt("model", mat4, IDENTITY)?;
     scene.material = o.opt("material", material, MaterialDesc::default())?;
@@ -593,7 +648,7 @@ fn light(v: &Value, path: String) -> Result<LightDesc> {
     })
 }
 
-fn mesh(v: &Value, path: String, base_dir: &Path) -> Result<MeshDesc> {
+fn mesh(v: &Value, path: String, base_dir: &Path, arrays: &mut MeshArrays) -> Result<MeshDesc> {
     let map = object(v, &path)?;
     if map.contains_key("obj") {
         let o = Obj::new(v, path, &["obj"])?;
@@ -603,10 +658,25 @@ fn mesh(v: &Value, path: String, base_dir: &Path) -> Result<MeshDesc> {
         generator(v, path)
     } else if map.contains_key("positions") {
         let o = Obj::new(v, path, &["positions", "indices", "normals"])?;
+        // An array was read into `arrays`; anything else is a wrong type.
+        let points = |given: Option<Vec<[f64; 3]>>| {
+            move |v: &Value, p: String| match given {
+                Some(a) => Ok(a),
+                None => list(v, p, vec3),
+            }
+        };
+        let tris = arrays.indices.take();
         Ok(MeshDesc {
-            positions: o.req("positions", |v, p| list(v, p, vec3))?,
-            indices: o.req("indices", |v, p| list(v, p, |t, q| array(t, q, uint)))?,
-            normals: o.opt("normals", |v, p| list(v, p, vec3).map(Some), None)?,
+            positions: o.req("positions", points(arrays.positions.take()))?,
+            indices: o.req("indices", |v, p| match tris {
+                Some(t) => Ok(t),
+                None => list(v, p, triangle),
+            })?,
+            normals: o.opt(
+                "normals",
+                |v, p| points(arrays.normals.take())(v, p).map(Some),
+                None,
+            )?,
         })
     } else {
         Err(key_error(
@@ -616,29 +686,54 @@ fn mesh(v: &Value, path: String, base_dir: &Path) -> Result<MeshDesc> {
     }
 }
 
+/// Reads the OBJ file at `path`, a regular file of at most
+/// [`MAX_FILE_BYTES`] ([`generate::read_obj`] gives its memory bound).
 fn obj_file(path: &Path) -> Result<MeshDesc> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneFileError::ObjRead {
+    let read_error = |e: std::io::Error| SceneFileError::ObjRead {
         path: path.to_path_buf(),
         message: e.to_string(),
-    })?;
-    generate::load_obj(&text).map_err(|error| SceneFileError::Obj {
+    };
+    // Opened once here for the error of a missing or irregular file, then
+    // once per pass of the reader.
+    open_regular(path).map_err(read_error)?;
+    generate::read_obj(|| open_regular(path)).map_err(|error| SceneFileError::Obj {
         path: path.to_path_buf(),
         error,
     })
 }
 
-/// A segment count in `min..=MAX_SEGMENTS` (the generators would clamp
-/// anything else; a file must not be silently changed).
-fn segments(v: &Value, path: String, min: u32) -> Result<u32> {
+/// A segment count in `min..=max` (the generators would clamp anything
+/// else; a file must not be silently changed).
+fn segments(v: &Value, path: String, min: u32, max: u32) -> Result<u32> {
     let n = uint(v, path.clone())?;
-    if (min..=MAX_SEGMENTS).contains(&n) {
+    if (min..=max).contains(&n) {
         Ok(n)
     } else {
         Err(key_error(
             path,
-            format!("{n} out of range (must be in {min}..={MAX_SEGMENTS})"),
+            format!("{n} out of range (must be in {min}..={max})"),
         ))
     }
+}
+
+/// Two segment counts whose `(a + 1) × (b + 1)` vertex grid fits
+/// [`MAX_VERTICES`].
+fn grid(v: &Value, path: String, min: [u32; 2]) -> Result<[u32; 2]> {
+    let pair: [u32; 2] = array(v, path.clone(), uint)?;
+    for k in 0..2 {
+        segments(&v[k], format!("{path}[{k}]"), min[k], MAX_SEGMENTS)?;
+    }
+    let vertices = (pair[0] as u64 + 1) * (pair[1] as u64 + 1);
+    if vertices > MAX_VERTICES as u64 {
+        return Err(key_error(
+            path,
+            format!(
+                "{} × {} segments make {vertices} vertices, more than {MAX_VERTICES}",
+                pair[0], pair[1]
+            ),
+        ));
+    }
+    Ok(pair)
 }
 
 /// A size or radius, `> 0`.
@@ -667,23 +762,531 @@ fn generator(v: &Value, path: String) -> Result<MeshDesc> {
     let o = Obj::new(v, path, allowed)?;
     Ok(match g {
         GeneratorName::Sphere => {
-            let [lon, lat] = o.req("segments", |v, p| {
-                let pair: [u32; 2] = array(v, p.clone(), uint)?;
-                segments(&v[0], format!("{p}[0]"), 3)?;
-                segments(&v[1], format!("{p}[1]"), 2)?;
-                Ok(pair)
-            })?;
+            let [lon, lat] = o.req("segments", |v, p| grid(v, p, [3, 2]))?;
             generate::sphere(lon, lat, o.req("radius", positive)?)
         }
         GeneratorName::Cube => generate::cube(o.req("size", positive)?),
         GeneratorName::Torus => {
             let [big, small] = o.req("radii", |v, p| array(v, p, positive))?;
-            let [u, w] = o.req("segments", |v, p| array(v, p, |x, q| segments(x, q, 3)))?;
+            let [u, w] = o.req("segments", |v, p| grid(v, p, [3, 3]))?;
             generate::torus(big, small, u, w)
         }
         GeneratorName::Plane => {
             let size = o.req("size", positive)?;
-            generate::plane(size, o.req("segments", |v, p| segments(v, p, 1))?)
+            let n = o.req("segments", |v, p| segments(v, p, 1, MAX_PLANE_SEGMENTS))?;
+            generate::plane(size, n)
         }
     })
+}
+
+// ---------------------------------------------------------------------------
+// Reading: a streaming JSON reader with bounded memory
+// ---------------------------------------------------------------------------
+
+/// The largest scene or OBJ file read, in bytes: a larger file is refused
+/// while it is read (a device such as `/dev/zero` never ends).
+///
+/// ```
+/// assert_eq!(fixshade::scene_file::MAX_FILE_BYTES, 64 << 20);
+/// ```
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
+/// Limits of everything in a scene file but the mesh's `positions`,
+/// `normals` and `indices`, so that what is kept of it as JSON values stays
+/// small whatever the file holds: values, bytes of strings and numbers, and
+/// nesting.
+const MAX_VALUES: usize = 16 * 1024;
+const MAX_TEXT: usize = 256 * 1024;
+const MAX_DEPTH: usize = 32;
+/// The longest string or number token anywhere (an OBJ path is a string).
+const MAX_TOKEN: usize = 4096;
+
+/// Opens `path` for reading if it is a regular file (not a directory, a
+/// device or a FIFO, which could block or never end), with its size capped
+/// at [`MAX_FILE_BYTES`] while it is read.
+fn open_regular(path: &Path) -> std::io::Result<std::io::BufReader<Capped>> {
+    use std::io::{Error, ErrorKind};
+    // The type is checked before opening: opening a FIFO blocks until a
+    // writer comes.
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    let file = std::fs::File::open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    Ok(std::io::BufReader::new(Capped {
+        file,
+        left: MAX_FILE_BYTES,
+    }))
+}
+
+/// A file read up to [`MAX_FILE_BYTES`]; reading past that is an error.
+struct Capped {
+    file: std::fs::File,
+    left: u64,
+}
+
+impl std::io::Read for Capped {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if self.left == 0 {
+            let mut probe = [0u8; 1];
+            return match self.file.read(&mut probe)? {
+                0 => Ok(0),
+                _ => Err(std::io::Error::other(format!(
+                    "larger than {MAX_FILE_BYTES} bytes"
+                ))),
+            };
+        }
+        let n = buf.len().min(self.left.min(usize::MAX as u64) as usize);
+        let got = self.file.read(&mut buf[..n])?;
+        self.left -= got as u64;
+        Ok(got)
+    }
+}
+
+/// The mesh's large arrays, read element by element into their final types
+/// instead of being kept as JSON values.
+#[derive(Default)]
+struct MeshArrays {
+    positions: Option<Vec<[f64; 3]>>,
+    normals: Option<Vec<[f64; 3]>>,
+    indices: Option<Vec<[u16; 3]>>,
+}
+
+/// A pull reader of JSON text (RFC 8259) from a `BufRead`, building
+/// `serde_json` values within the limits above, and the mesh's arrays.
+struct JsonReader<R> {
+    input: R,
+    line: u64,
+    column: u64,
+    values: usize,
+    text: usize,
+    arrays: MeshArrays,
+}
+
+/// Why reading stopped: a syntax error (message with its position), an
+/// error about a key, or the input failing.
+enum Stop {
+    Syntax(String),
+    File(SceneFileError),
+    Io(std::io::Error),
+}
+
+impl From<SceneFileError> for Stop {
+    fn from(e: SceneFileError) -> Self {
+        Stop::File(e)
+    }
+}
+
+type Read<T> = std::result::Result<T, Stop>;
+
+impl<R: std::io::BufRead> JsonReader<R> {
+    fn new(input: R) -> Self {
+        JsonReader {
+            input,
+            line: 1,
+            column: 0,
+            values: 0,
+            text: 0,
+            arrays: MeshArrays::default(),
+        }
+    }
+
+    fn syntax<T>(&self, what: impl fmt::Display) -> Read<T> {
+        Err(Stop::Syntax(format!(
+            "{what} at line {} column {}",
+            self.line, self.column
+        )))
+    }
+
+    fn peek(&mut self) -> Read<Option<u8>> {
+        let buf = self.input.fill_buf().map_err(Stop::Io)?;
+        Ok(buf.first().copied())
+    }
+
+    fn bump(&mut self) -> Read<Option<u8>> {
+        let b = self.peek()?;
+        if let Some(b) = b {
+            self.input.consume(1);
+            if b == b'\n' {
+                self.line += 1;
+                self.column = 0;
+            } else {
+                self.column += 1;
+            }
+        }
+        Ok(b)
+    }
+
+    /// The next byte that is not white space, not consumed.
+    fn next_token(&mut self) -> Read<Option<u8>> {
+        while let Some(b) = self.peek()? {
+            if !matches!(b, b' ' | b'\t' | b'\n' | b'\r') {
+                return Ok(Some(b));
+            }
+            self.bump()?;
+        }
+        Ok(None)
+    }
+
+    fn expect_end(&mut self) -> Read<()> {
+        match self.next_token()? {
+            None => Ok(()),
+            Some(_) => {
+                self.bump()?;
+                self.syntax("trailing characters")
+            }
+        }
+    }
+
+    /// Counts one kept value and `bytes` of kept text against the limits.
+    fn keep(&mut self, path: &str, bytes: usize) -> Read<()> {
+        self.values += 1;
+        self.text += bytes;
+        if self.values > MAX_VALUES || self.text > MAX_TEXT {
+            return Err(key_error(
+                path.to_string(),
+                format!(
+                    "the scene holds more than {MAX_VALUES} values or {MAX_TEXT} bytes of text \
+                     outside mesh.positions, mesh.normals and mesh.indices"
+                ),
+            )
+            .into());
+        }
+        Ok(())
+    }
+
+    /// One JSON value at `path`, kept as a `serde_json` value (within the
+    /// limits); at `mesh.positions`, `mesh.normals` and `mesh.indices` an
+    /// array is read into [`MeshArrays`] instead and `null` stands in its
+    /// place.
+    fn value(&mut self, path: &str, depth: usize) -> Read<Value> {
+        if depth > MAX_DEPTH {
+            return self.syntax(format_args!("nesting deeper than {MAX_DEPTH}"));
+        }
+        let Some(b) = self.next_token()? else {
+            return self.syntax("EOF while parsing a value");
+        };
+        match b {
+            b'{' => self.object(path, depth),
+            b'[' => {
+                if let Some(kind) = mesh_array(path) {
+                    self.mesh_array(path, kind)?;
+                    return Ok(Value::Null);
+                }
+                self.keep(path, 0)?;
+                self.bump()?;
+                let mut items = Vec::new();
+                if self.next_token()? == Some(b']') {
+                    self.bump()?;
+                    return Ok(Value::Array(items));
+                }
+                loop {
+                    let item = self.value(&format!("{path}[{}]", items.len()), depth + 1)?;
+                    items.push(item);
+                    match self.next_token()? {
+                        Some(b',') => {
+                            self.bump()?;
+                        }
+                        Some(b']') => {
+                            self.bump()?;
+                            return Ok(Value::Array(items));
+                        }
+                        _ => {
+                            self.bump()?;
+                            return self.syntax("expected `,` or `]`");
+                        }
+                    }
+                }
+            }
+            b'"' => {
+                let s = self.string()?;
+                self.keep(path, s.len())?;
+                Ok(Value::String(s))
+            }
+            b'-' | b'0'..=b'9' => {
+                let n = self.number()?;
+                self.keep(path, n.len())?;
+                match n.parse::<serde_json::Number>() {
+                    Ok(n) => Ok(Value::Number(n)),
+                    Err(_) => self.syntax("invalid number"),
+                }
+            }
+            b't' => self.literal("true", Value::Bool(true)),
+            b'f' => self.literal("false", Value::Bool(false)),
+            b'n' => self.literal("null", Value::Null),
+            _ => {
+                self.bump()?;
+                self.syntax("expected value")
+            }
+        }
+    }
+
+    fn object(&mut self, path: &str, depth: usize) -> Read<Value> {
+        self.keep(path, 0)?;
+        self.bump()?;
+        let mut map = Map::new();
+        if self.next_token()? == Some(b'}') {
+            self.bump()?;
+            return Ok(Value::Object(map));
+        }
+        loop {
+            if self.next_token()? != Some(b'"') {
+                self.bump()?;
+                return self.syntax("key must be a string");
+            }
+            let key = self.string()?;
+            self.keep(path, key.len())?;
+            let sub = if path.is_empty() {
+                key.clone()
+            } else {
+                format!("{path}.{key}")
+            };
+            if self.next_token()? != Some(b':') {
+                self.bump()?;
+                return self.syntax("expected `:`");
+            }
+            self.bump()?;
+            let v = self.value(&sub, depth + 1)?;
+            if map.insert(key, v).is_some() {
+                return Err(key_error(sub, "duplicate key").into());
+            }
+            match self.next_token()? {
+                Some(b',') => {
+                    self.bump()?;
+                }
+                Some(b'}') => {
+                    self.bump()?;
+                    return Ok(Value::Object(map));
+                }
+                _ => {
+                    self.bump()?;
+                    return self.syntax("expected `,` or `}`");
+                }
+            }
+        }
+    }
+
+    fn literal(&mut self, word: &str, v: Value) -> Read<Value> {
+        for &w in word.as_bytes() {
+            if self.bump()? != Some(w) {
+                return self.syntax("expected value");
+            }
+        }
+        Ok(v)
+    }
+
+    /// A number token's text, checked against the JSON grammar.
+    fn number(&mut self) -> Read<String> {
+        let mut s = String::new();
+        while let Some(b) = self.peek()? {
+            if !matches!(b, b'-' | b'+' | b'.' | b'e' | b'E' | b'0'..=b'9') {
+                break;
+            }
+            if s.len() == MAX_TOKEN {
+                return self.syntax(format_args!("number longer than {MAX_TOKEN} characters"));
+            }
+            s.push(b as char);
+            self.bump()?;
+        }
+        if !is_json_number(&s) {
+            return self.syntax("invalid number");
+        }
+        Ok(s)
+    }
+
+    /// A string token (the opening quote is next), unescaped.
+    fn string(&mut self) -> Read<String> {
+        self.bump()?;
+        let mut out: Vec<u8> = Vec::new();
+        loop {
+            if out.len() > MAX_TOKEN {
+                return self.syntax(format_args!("string longer than {MAX_TOKEN} bytes"));
+            }
+            match self.bump()? {
+                None => return self.syntax("EOF while parsing a string"),
+                Some(b'"') => break,
+                Some(b'\\') => {
+                    let c = match self.bump()? {
+                        Some(b'"') => '"',
+                        Some(b'\\') => '\\',
+                        Some(b'/') => '/',
+                        Some(b'b') => '\u{8}',
+                        Some(b'f') => '\u{c}',
+                        Some(b'n') => '\n',
+                        Some(b'r') => '\r',
+                        Some(b't') => '\t',
+                        Some(b'u') => self.unicode_escape()?,
+                        _ => return self.syntax("invalid escape"),
+                    };
+                    let mut tmp = [0u8; 4];
+                    out.extend_from_slice(c.encode_utf8(&mut tmp).as_bytes());
+                }
+                Some(b) if b < 0x20 => {
+                    return self.syntax("control character in a string");
+                }
+                Some(b) => out.push(b),
+            }
+        }
+        match String::from_utf8(out) {
+            Ok(s) => Ok(s),
+            Err(_) => self.syntax("string is not UTF-8"),
+        }
+    }
+
+    fn hex4(&mut self) -> Read<u32> {
+        let mut v = 0;
+        for _ in 0..4 {
+            let d = match self.bump()? {
+                Some(b) => (b as char).to_digit(16),
+                None => None,
+            };
+            match d {
+                Some(d) => v = v * 16 + d,
+                None => return self.syntax("invalid \\u escape"),
+            }
+        }
+        Ok(v)
+    }
+
+    /// The character of a `\uXXXX` escape (a surrogate pair takes two).
+    fn unicode_escape(&mut self) -> Read<char> {
+        let hi = self.hex4()?;
+        let code = if (0xD800..0xDC00).contains(&hi) {
+            if self.bump()? != Some(b'\\') || self.bump()? != Some(b'u') {
+                return self.syntax("lone surrogate in a \\u escape");
+            }
+            let lo = self.hex4()?;
+            if !(0xDC00..0xE000).contains(&lo) {
+                return self.syntax("lone surrogate in a \\u escape");
+            }
+            0x10000 + ((hi - 0xD800) << 10) + (lo - 0xDC00)
+        } else {
+            hi
+        };
+        match char::from_u32(code) {
+            Some(c) => Ok(c),
+            None => self.syntax("lone surrogate in a \\u escape"),
+        }
+    }
+
+    /// `mesh.positions`, `mesh.normals` or `mesh.indices`: each element is
+    /// read as a small value, converted and dropped.
+    fn mesh_array(&mut self, path: &str, kind: MeshArray) -> Read<()> {
+        self.bump()?;
+        let mut points: Vec<[f64; 3]> = Vec::new();
+        let mut tris: Vec<[u16; 3]> = Vec::new();
+        let mut n = 0usize;
+        if self.next_token()? == Some(b']') {
+            self.bump()?;
+        } else {
+            loop {
+                let at = format!("{path}[{n}]");
+                let (values, text) = (self.values, self.text);
+                let v = self.value(&at, 2)?;
+                (self.values, self.text) = (values, text);
+                match kind {
+                    MeshArray::Positions | MeshArray::Normals => {
+                        if n == MAX_VERTICES {
+                            return Err(key_error(
+                                path.to_string(),
+                                format!("more than {MAX_VERTICES} vertices"),
+                            )
+                            .into());
+                        }
+                        points.push(vec3(&v, at)?);
+                    }
+                    MeshArray::Indices => tris.push(triangle(&v, at)?),
+                }
+                n += 1;
+                match self.next_token()? {
+                    Some(b',') => {
+                        self.bump()?;
+                    }
+                    Some(b']') => {
+                        self.bump()?;
+                        break;
+                    }
+                    _ => {
+                        self.bump()?;
+                        return self.syntax("expected `,` or `]`");
+                    }
+                }
+            }
+        }
+        match kind {
+            MeshArray::Positions => self.arrays.positions = Some(points),
+            MeshArray::Normals => self.arrays.normals = Some(points),
+            MeshArray::Indices => self.arrays.indices = Some(tris),
+        }
+        Ok(())
+    }
+}
+
+#[derive(Clone, Copy)]
+enum MeshArray {
+    Positions,
+    Normals,
+    Indices,
+}
+
+fn mesh_array(path: &str) -> Option<MeshArray> {
+    match path {
+        "mesh.positions" => Some(MeshArray::Positions),
+        "mesh.normals" => Some(MeshArray::Normals),
+        "mesh.indices" => Some(MeshArray::Indices),
+        _ => None,
+    }
+}
+
+/// One triangle of `mesh.indices`: three integers below 2¹⁶ (a mesh has at
+/// most [`MAX_VERTICES`] vertices).
+fn triangle(v: &Value, path: String) -> Result<[u16; 3]> {
+    array(v, path, |x, p| {
+        let i = uint(x, p.clone())?;
+        u16::try_from(i).map_err(|_| {
+            key_error(
+                p,
+                format!("{i} is too large (a mesh has at most {MAX_VERTICES} vertices)"),
+            )
+        })
+    })
+}
+
+/// `-? (0 | [1-9][0-9]*) (. [0-9]+)? ([eE] [+-]? [0-9]+)?`
+fn is_json_number(s: &str) -> bool {
+    let b = s.as_bytes();
+    let mut i = 0;
+    let digits = |i: &mut usize| {
+        let start = *i;
+        while *i < b.len() && b[*i].is_ascii_digit() {
+            *i += 1;
+        }
+        *i > start
+    };
+    if b.first() == Some(&b'-') {
+        i += 1;
+    }
+    if b.get(i) == Some(&b'0') {
+        i += 1;
+    } else if !digits(&mut i) {
+        return false;
+    }
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        if !digits(&mut i) {
+            return false;
+        }
+    }
+    if matches!(b.get(i), Some(b'e' | b'E')) {
+        i += 1;
+        if matches!(b.get(i), Some(b'+' | b'-')) {
+            i += 1;
+        }
+        if !digits(&mut i) {
+            return false;
+        }
+    }
+    i == b.len()
 }

@@ -59,9 +59,10 @@ pub const MAX_LIGHTS: usize = 64;
 /// use fixshade::scene_kernel::{KernelScene, KernelSceneError};
 /// use fixshade::standard_scenes::sphere_scene;
 /// let mut s = sphere_scene(8, 8, 12, 6);
-/// s.mesh.positions[0] = [1000.0, 0.0, 0.0]; // a valid f64 scene, beyond I8F24's ±128
-/// assert!(s.validate().is_ok());
+/// s.mesh.positions[0] = [1000.0, 0.0, 0.0]; // beyond I8F24's ±128
 /// let err = KernelScene::new(&s).unwrap_err();
+/// // Validation refuses what the kernel would, with the same message.
+/// assert_eq!(s.validate().unwrap_err().to_string(), err.to_string());
 /// assert!(matches!(err, KernelSceneError::Format("mesh.positions", _)));
 /// assert!(err.to_string().starts_with("mesh.positions: "));
 /// ```
@@ -134,6 +135,78 @@ fn rgb(what: &'static str, c: [f64; 3]) -> Result<Rgb, KernelSceneError> {
     Rgb::from_f64(c).map_err(|e| KernelSceneError::Format(what, e))
 }
 
+/// A scene's camera, model, material and lights in kernel formats.
+struct Parts {
+    camera: Camera,
+    model: Mat4,
+    /// Emission, ambient, diffuse, specular, global ambient.
+    colours: [Rgb; 5],
+    shininess: Exponent,
+    lights: heapless::Vec<AnyLight, MAX_LIGHTS>,
+}
+
+impl Parts {
+    fn new(d: &SceneDesc) -> Result<Parts, KernelSceneError> {
+        let c = &d.camera;
+        let projection = match c.projection {
+            scene_desc::Projection::Perspective { fovy_deg } => Projection::Perspective {
+                fovy_deg: fovy_deg as f32,
+            },
+            scene_desc::Projection::Orthographic { height } => Projection::Orthographic {
+                height: height as f32,
+            },
+        };
+        let camera = Camera::look_at_f64(c.eye, c.target, c.up)
+            .and_then(|cam| cam.with_projection(projection, c.near as f32, c.far as f32))
+            .map_err(KernelSceneError::Camera)?;
+        let model = Mat4::from_f64(d.model).map_err(|e| KernelSceneError::Format("model", e))?;
+        let m = &d.material;
+        let mut lights = heapless::Vec::new();
+        for (i, l) in d.lights.iter().enumerate() {
+            let kl = convert_light(l).map_err(|e| KernelSceneError::Light(i, e))?;
+            lights
+                .push(kl)
+                .map_err(|_| KernelSceneError::TooManyLights)?;
+        }
+        Ok(Parts {
+            camera,
+            model,
+            colours: [
+                rgb("material.emission", m.emission)?,
+                rgb("material.ambient", m.ambient)?,
+                rgb("material.diffuse", m.diffuse)?,
+                rgb("material.specular", m.specular)?,
+                rgb("global_ambient", d.global_ambient)?,
+            ],
+            shininess: Exponent::from_f64(m.shininess)
+                .map_err(|e| KernelSceneError::Format("material.shininess", e))?,
+            lights,
+        })
+    }
+}
+
+/// What the kernel would refuse to render of a description that is
+/// otherwise valid: a value outside a kernel format, too many lights or
+/// vertices, a camera or projection that does not fit; checked without
+/// converting the mesh ([`SceneDesc::validate`] calls it, so that a scene
+/// that passes validation renders).
+pub(crate) fn check(d: &SceneDesc) -> Result<(), KernelSceneError> {
+    if d.mesh.positions.len() > 65536 {
+        return Err(KernelSceneError::TooManyVertices);
+    }
+    for p in &d.mesh.positions {
+        Vec3::from_f64(*p).map_err(|e| KernelSceneError::Format("mesh.positions", e))?;
+    }
+    let parts = Parts::new(d)?;
+    if d.width > 0 && d.height > 0 {
+        parts
+            .camera
+            .projection_for(d.width, d.height)
+            .map_err(KernelSceneError::Camera)?;
+    }
+    Ok(())
+}
+
 impl KernelScene {
     /// Converts a description (which should have passed
     /// [`SceneDesc::validate`]).
@@ -158,12 +231,7 @@ impl KernelScene {
             .map(|p| Vec3::from_f64(*p))
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| KernelSceneError::Format("mesh.positions", e))?;
-        let indices: Vec<[u16; 3]> = d
-            .mesh
-            .indices
-            .iter()
-            .map(|t| t.map(|i| i.min(u16::MAX as u32) as u16))
-            .collect();
+        let indices: Vec<[u16; 3]> = d.mesh.indices.iter().copied().collect();
         let normals = match &d.mesh.normals {
             Some(ns) => ns
                 .iter()
@@ -177,43 +245,22 @@ impl KernelScene {
                 out
             }
         };
-        let c = &d.camera;
-        let projection = match c.projection {
-            scene_desc::Projection::Perspective { fovy_deg } => Projection::Perspective {
-                fovy_deg: fovy_deg as f32,
-            },
-            scene_desc::Projection::Orthographic { height } => Projection::Orthographic {
-                height: height as f32,
-            },
-        };
-        let camera = Camera::look_at_f64(c.eye, c.target, c.up)
-            .and_then(|cam| cam.with_projection(projection, c.near as f32, c.far as f32))
-            .map_err(KernelSceneError::Camera)?;
-        let model = Mat4::from_f64(d.model).map_err(|e| KernelSceneError::Format("model", e))?;
-        let m = &d.material;
-        let mut lights = heapless::Vec::new();
-        for (i, l) in d.lights.iter().enumerate() {
-            let kl = convert_light(l).map_err(|e| KernelSceneError::Light(i, e))?;
-            lights
-                .push(kl)
-                .map_err(|_| KernelSceneError::TooManyLights)?;
-        }
+        let parts = Parts::new(d)?;
         Ok(KernelScene {
             width: d.width,
             height: d.height,
             positions,
             normals,
             indices,
-            camera,
-            model,
-            emission: rgb("material.emission", m.emission)?,
-            ambient: rgb("material.ambient", m.ambient)?,
-            diffuse: rgb("material.diffuse", m.diffuse)?,
-            specular: rgb("material.specular", m.specular)?,
-            shininess: Exponent::from_f64(m.shininess)
-                .map_err(|e| KernelSceneError::Format("material.shininess", e))?,
-            global_ambient: rgb("global_ambient", d.global_ambient)?,
-            lights,
+            camera: parts.camera,
+            model: parts.model,
+            emission: parts.colours[0],
+            ambient: parts.colours[1],
+            diffuse: parts.colours[2],
+            specular: parts.colours[3],
+            shininess: parts.shininess,
+            global_ambient: parts.colours[4],
+            lights: parts.lights,
             background: Shade::from_bits(
                 (d.background[0].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
                 (d.background[1].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
@@ -233,7 +280,7 @@ impl KernelScene {
     /// let mesh = k.mesh();
     /// assert!(mesh.validate().is_ok());
     /// assert_eq!(mesh.positions[7], Vec3::from_f64(s.mesh.positions[7]).unwrap());
-    /// assert_eq!(mesh.indices[7].map(u32::from), s.mesh.indices[7]);
+    /// assert_eq!(mesh.indices[7], s.mesh.indices[7]);
     /// ```
     pub fn mesh(&self) -> Mesh<'_> {
         Mesh::new(&self.positions, &self.indices).with_normals(&self.normals)

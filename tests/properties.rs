@@ -69,7 +69,7 @@ fn mesh() -> impl Strategy<Value = MeshDesc> {
         (
             prop::collection::vec(coord(1.0), n),
             prop::collection::vec(direction(), n),
-            prop::collection::vec([0..n as u32, 0..n as u32, 0..n as u32], 1..=6),
+            prop::collection::vec([0..n as u16, 0..n as u16, 0..n as u16], 1..=6),
         )
             .prop_map(move |(positions, normals, indices)| MeshDesc {
                 positions,

@@ -379,7 +379,7 @@ fn window_mesh(size: u32, tris: &[[(f64, f64); 3]]) -> MeshDesc {
     let mut positions = Vec::new();
     let mut indices = Vec::new();
     for tri in tris {
-        let base = positions.len() as u32;
+        let base = positions.len() as u16;
         for &(x, y) in tri {
             positions.push([x - h, h - y, 0.0]);
         }
@@ -1155,13 +1155,13 @@ proptest! {
     #[test]
     fn random_scenes_render_in_range(
         positions in prop::collection::vec(vec3(3.0), 3..12),
-        raw in prop::collection::vec([0u32..12, 0u32..12, 0u32..12], 1..12),
+        raw in prop::collection::vec([0u16..12, 0u16..12, 0u16..12], 1..12),
         eye in vec3(6.0),
         shading in 0usize..3,
         two_sided in any::<bool>(),
         ortho in any::<bool>(),
     ) {
-        let n = positions.len() as u32;
+        let n = positions.len() as u16;
         let indices = raw.into_iter().map(|t| t.map(|i| i % n)).collect();
         let camera = CameraDesc {
             eye,

@@ -477,3 +477,328 @@ fn obj_resolves_against_the_scene_file() {
     let scene = load_scene(scenes_dir().join("bunny.json")).unwrap();
     assert_eq!(scene.mesh, standard_scenes::bunny_mesh());
 }
+
+// ---------------------------------------------------------------------------
+// Hostile files
+// ---------------------------------------------------------------------------
+
+/// Heap use of the current thread: bytes live now and the peak since
+/// [`reset_peak`], counted per thread so that tests running in parallel do
+/// not see each other's allocations.
+mod heap {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::Cell;
+
+    thread_local! {
+        static LIVE: Cell<usize> = const { Cell::new(0) };
+        static PEAK: Cell<usize> = const { Cell::new(0) };
+    }
+
+    pub struct Counting;
+
+    fn add(n: usize) {
+        // try_with: the thread's slots may be gone while it exits.
+        let _ = LIVE.try_with(|l| {
+            let now = l.get() + n;
+            l.set(now);
+            let _ = PEAK.try_with(|p| p.set(p.get().max(now)));
+        });
+    }
+
+    fn sub(n: usize) {
+        let _ = LIVE.try_with(|l| l.set(l.get().saturating_sub(n)));
+    }
+
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            add(layout.size());
+            unsafe { System.alloc(layout) }
+        }
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            sub(layout.size());
+            unsafe { System.dealloc(ptr, layout) }
+        }
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new: usize) -> *mut u8 {
+            // Counted as a new block beside the old one, as a moving
+            // reallocation holds both.
+            add(new);
+            let p = unsafe { System.realloc(ptr, layout, new) };
+            sub(layout.size());
+            p
+        }
+    }
+
+    /// Starts a measurement: the peak is set to what is live now.
+    pub fn reset_peak() -> usize {
+        let live = LIVE.with(Cell::get);
+        PEAK.with(|p| p.set(live));
+        live
+    }
+
+    pub fn peak() -> usize {
+        PEAK.with(Cell::get)
+    }
+}
+
+#[global_allocator]
+static HEAP: heap::Counting = heap::Counting;
+
+/// A scratch folder for this test binary's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fixshade-hostile-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `f` on another thread and fails if it takes more than a minute
+/// (a read that blocks would otherwise hang the test run).
+fn within_a_minute<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(std::time::Duration::from_secs(60))
+        .expect("the read did not end within a minute")
+}
+
+/// A scene or OBJ path naming something that is not a regular file (a
+/// device that never ends, a FIFO nobody writes, a folder) is refused at
+/// once, before anything is read.
+#[test]
+fn refuses_what_is_not_a_regular_file() {
+    let dir = scratch("irregular");
+    let fifo = dir.join("fifo");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+    for path in [PathBuf::from("/dev/zero"), fifo.clone(), dir.clone()] {
+        let p = path.clone();
+        let err = within_a_minute(move || load_scene(&p).unwrap_err().to_string());
+        assert!(
+            err.contains("not a regular file"),
+            "{}: {err}",
+            path.display()
+        );
+        let obj = BASE.replace(
+            "{\"positions\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], \"indices\": [[0, 1, 2]]}",
+            &format!("{{\"obj\": \"{}\"}}", path.display()),
+        );
+        let err = within_a_minute(move || parse(&obj).unwrap_err().to_string());
+        assert!(err.starts_with("mesh.obj: cannot read "), "{err}");
+        assert!(err.contains("not a regular file"), "{err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A file longer than `MAX_FILE_BYTES` is refused while it is read, scene
+/// and OBJ alike; one of exactly that size is read.
+#[test]
+fn refuses_files_past_the_size_cap() {
+    use fixshade::scene_file::MAX_FILE_BYTES;
+    let dir = scratch("cap");
+    let pad = |extra: u64| {
+        let mut text = BASE.as_bytes().to_vec();
+        text.resize((MAX_FILE_BYTES + extra) as usize, b' ');
+        text
+    };
+    std::fs::write(dir.join("at.json"), pad(0)).unwrap();
+    std::fs::write(dir.join("past.json"), pad(1)).unwrap();
+    assert!(load_scene(dir.join("at.json")).is_ok());
+    let err = load_scene(dir.join("past.json")).unwrap_err().to_string();
+    assert!(
+        err.contains(&format!("larger than {MAX_FILE_BYTES} bytes")),
+        "{err}"
+    );
+    let mut obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec();
+    obj.resize((MAX_FILE_BYTES + 1) as usize, b'\n');
+    std::fs::write(dir.join("past.obj"), obj).unwrap();
+    let with_obj = BASE.replace(
+        "{\"positions\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], \"indices\": [[0, 1, 2]]}",
+        "{\"obj\": \"past.obj\"}",
+    );
+    let err = parse_scene(&with_obj, &dir).unwrap_err().to_string();
+    assert!(err.starts_with("mesh.obj: "), "{err}");
+    assert!(
+        err.contains(&format!("larger than {MAX_FILE_BYTES} bytes")),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Reading takes at most the documented memory per byte of input: 2.25
+/// bytes per byte of a scene file plus 16 MiB (`read_scene`), 3 bytes per
+/// byte of an OBJ file plus 6 MiB (`generate::read_obj`), measured on
+/// files of the shapes that cost the most per byte (positions written as
+/// short as JSON allows, many short triangles, OBJ polygons fanned from
+/// one-digit indices). The heap the reader's result keeps counts too.
+#[test]
+fn reading_memory_per_byte_of_input() {
+    const MIB: usize = 1 << 20;
+    let dir = scratch("memory");
+    let measure = |path: &Path| {
+        let before = heap::reset_peak();
+        let scene = load_scene(path);
+        let peak = heap::peak() - before;
+        (scene, peak)
+    };
+    // JSON: 65 536 short positions and 1.5 M short triangles (12 MB).
+    let mut json = String::from(
+        r#"{"width": 32, "height": 24, "camera": {"eye": [0, 0, 3], "target": [0, 0, 0],
+        "up": [0, 1, 0], "near": 0.1, "far": 10, "fovy_deg": 60},
+        "mesh": {"positions": ["#,
+    );
+    for i in 0..65536 {
+        json.push_str(if i == 0 { "[0,0,0]" } else { ",[0,0,0]" });
+    }
+    json.push_str(r#"], "indices": ["#);
+    for i in 0..1_500_000 {
+        json.push_str(if i == 0 { "[0,1,2]" } else { ",[0,1,2]" });
+    }
+    json.push_str("]}}");
+    std::fs::write(dir.join("big.json"), &json).unwrap();
+    let (scene, peak) = measure(&dir.join("big.json"));
+    let scene = scene.unwrap();
+    assert_eq!(scene.mesh.indices.len(), 1_500_000);
+    println!("JSON {} bytes: peak {peak} bytes", json.len());
+    assert!(
+        peak <= json.len() * 9 / 4 + 16 * MIB,
+        "JSON: {peak} bytes for {}",
+        json.len()
+    );
+
+    // OBJ: long fanned polygons of one-digit indices, and short triangles.
+    for (name, face, faces) in [
+        (
+            "fan",
+            {
+                let mut f = String::from("f 1 2 3");
+                for _ in 0..8000 {
+                    f.push_str(" 2 3");
+                }
+                f.push('\n');
+                f
+            },
+            400,
+        ),
+        ("triangles", "f 1 2 3\n".to_string(), 1_000_000),
+    ] {
+        let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        for _ in 0..faces {
+            obj.push_str(&face);
+        }
+        std::fs::write(dir.join(format!("{name}.obj")), &obj).unwrap();
+        let scene_text = BASE.replace(
+            "{\"positions\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], \"indices\": [[0, 1, 2]]}",
+            &format!("{{\"obj\": \"{name}.obj\"}}"),
+        );
+        std::fs::write(dir.join(format!("{name}.json")), &scene_text).unwrap();
+        let (scene, peak) = measure(&dir.join(format!("{name}.json")));
+        assert!(!scene.unwrap().mesh.indices.is_empty());
+        println!("OBJ {name} {} bytes: peak {peak} bytes", obj.len());
+        assert!(
+            peak <= obj.len() * 3 + 6 * MIB,
+            "OBJ {name}: {peak} bytes for {}",
+            obj.len()
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A key, a variant name or an OBJ path holding a line break (or another
+/// control character) is echoed escaped: the error stays one line.
+#[test]
+fn echoed_text_is_escaped() {
+    rejects(
+        &BASE.replace("\"width\": 32", "\"width\": 32, \"a\\nb\\u001b[2J\": 1"),
+        "a\\nb\\u{1b}[2J: unknown key",
+        "",
+    );
+    rejects(
+        &BASE.replace("\"directional\"", "\"sun\\nset\""),
+        "lights[0].type: unknown variant `sun\\nset`",
+        "",
+    );
+    rejects(
+        &BASE.replace(
+            "{\"positions\": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], \"indices\": [[0, 1, 2]]}",
+            "{\"obj\": \"no\\nsuch.obj\"}",
+        ),
+        "mesh.obj: cannot read ",
+        "no\\nsuch.obj",
+    );
+}
+
+/// The work a scene asks for is bounded: light samples a shaded point
+/// (`MAX_LIGHT_SAMPLES`), and light evaluations a frame
+/// (`MAX_LIGHT_EVALUATIONS`); both refused naming `lights`, the first
+/// before anything is rendered. A 1 KB file of 64 area lights of 4096
+/// samples took about 40 minutes a frame.
+#[test]
+fn refuses_work_past_the_limits() {
+    let area = r#"{"type": "area", "center": [0, 3, 0], "edge_u": [1, 0, 0],
+        "edge_v": [0, 0, 1], "samples_k": K}"#;
+    let lights = |k: u32, n: usize| {
+        let one = area.replace('K', &k.to_string());
+        format!("\"lights\": [{}]", vec![one; n].join(", "))
+    };
+    let base_lights = BASE.find("\"lights\"").unwrap();
+    let with = |l: String| format!("{}{l}\n}}", &BASE[..base_lights]);
+    assert!(parse(&with(lights(64, 1))).is_ok());
+    assert!(parse(&with(lights(8, 64))).is_ok());
+    rejects(
+        &with(lights(64, 64)),
+        "lights: 262144 light samples",
+        "more than 4096",
+    );
+    rejects(&with(lights(64, 2)), "lights: 8192 light samples", "");
+    // 4096 samples over 1024 × 1024 pixels: past the evaluations a frame.
+    let big = with(lights(64, 1))
+        .replace("\"width\": 32", "\"width\": 1024")
+        .replace("\"height\": 24", "\"height\": 1024");
+    rejects(
+        &big,
+        "lights: 4096 light samples at ",
+        "light evaluations a frame",
+    );
+}
+
+/// What validation passes, the kernel renders: a scene the kernel would
+/// refuse (a camera whose view does not fit its formats, a position out of
+/// range, too many lights, a projection too narrow for the target) is
+/// refused by the reader, naming the key; every scene the reader accepts
+/// here renders.
+#[test]
+fn validation_agrees_with_rendering() {
+    rejects(
+        &BASE.replace("\"eye\": [0, 0, 3]", "\"eye\": [100, 100, 100]"),
+        "camera: ",
+        "",
+    );
+    rejects(
+        &BASE.replace("[1, 0, 0], [0, 1, 0]]", "[1000, 0, 0], [0, 1, 0]]"),
+        "mesh.positions: ",
+        "",
+    );
+    rejects(&BASE.replace("\"far\": 10", "\"far\": 200"), "camera: ", "");
+    let many = format!(
+        "\"lights\": [{}]",
+        vec!["{\"type\": \"directional\", \"direction\": [1, 1, 1]}"; 65].join(", ")
+    );
+    let at = BASE.find("\"lights\"").unwrap();
+    rejects(
+        &format!("{}{many}\n}}", &BASE[..at]),
+        "lights: more than 64",
+        "",
+    );
+    for edit in [
+        ("\"eye\": [0, 0, 3]", "\"eye\": [60, 60, 60]"),
+        ("\"far\": 10", "\"far\": 100"),
+        ("\"fovy_deg\": 60", "\"fovy_deg\": 0.5"),
+        ("\"width\": 32", "\"width\": 4000"),
+    ] {
+        let text = BASE.replace(edit.0, edit.1);
+        if let Ok(scene) = parse(&text) {
+            let k = KernelScene::new(&scene).expect("a valid scene converts");
+            k.render_frame().expect("a valid scene renders");
+        }
+    }
+}

@@ -122,11 +122,7 @@ pub fn mesh_statics(name: &str, m: &MeshDesc) -> String {
         .iter()
         .map(|p| Vec3::from_f64(*p).expect("position"))
         .collect();
-    let indices: Vec<[u16; 3]> = m
-        .indices
-        .iter()
-        .map(|t| t.map(|i| u16::try_from(i).expect("index fits u16")))
-        .collect();
+    let indices: &[[u16; 3]] = &m.indices;
     let normals: Vec<Unit3> = match &m.normals {
         Some(ns) => ns
             .iter()
@@ -135,7 +131,7 @@ pub fn mesh_statics(name: &str, m: &MeshDesc) -> String {
         None => {
             let mut sums = vec![[0i32; 3]; positions.len()];
             let mut out = vec![Unit3::ZERO; positions.len()];
-            vertex_normals(&positions, &indices, &mut sums, &mut out).expect("normals");
+            vertex_normals(&positions, indices, &mut sums, &mut out).expect("normals");
             out
         }
     };
@@ -155,7 +151,7 @@ pub fn mesh_statics(name: &str, m: &MeshDesc) -> String {
         "];\npub static {up}_I: [[u16; 3]; {}] = [",
         indices.len()
     );
-    for t in &indices {
+    for t in indices {
         let _ = writeln!(s, "[{}, {}, {}],", t[0], t[1], t[2]);
     }
     s.push_str("];\n");
