@@ -23,7 +23,7 @@ use std::process::ExitCode;
 
 use fixshade::error_measure::compare;
 use fixshade::reference;
-use fixshade::scene_file::load_scene;
+use fixshade::scene_file::{load_scene, one_line};
 use fixshade::scene_kernel::KernelScene;
 
 const USAGE: &str =
@@ -102,7 +102,8 @@ fn parse_args() -> Result<Args, Failure> {
 
 fn run() -> Result<(), Failure> {
     let args = parse_args()?;
-    let name = args.scene.display().to_string();
+    // Escaped: a file name may hold a line break, and an error is one line.
+    let name = one_line(&args.scene.display().to_string());
     let desc = load_scene(&args.scene).map_err(|e| input(format!("{name}: {e}")))?;
     if desc.width == 0 || desc.height == 0 {
         return Err(input(format!(

@@ -231,7 +231,7 @@ impl KernelScene {
             .map(|p| Vec3::from_f64(*p))
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| KernelSceneError::Format("mesh.positions", e))?;
-        let indices: Vec<[u16; 3]> = d.mesh.indices.iter().copied().collect();
+        let indices: Vec<[u16; 3]> = d.mesh.indices.clone();
         let normals = match &d.mesh.normals {
             Some(ns) => ns
                 .iter()

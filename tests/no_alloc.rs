@@ -106,7 +106,7 @@ impl KernelMesh {
             .iter()
             .map(|p| Vec3::from_f64(*p).expect("position"))
             .collect();
-        let indices: Vec<[u16; 3]> = d.indices.iter().map(|t| t.map(|i| i as u16)).collect();
+        let indices: Vec<[u16; 3]> = d.indices.clone();
         let normals = match &d.normals {
             Some(ns) => ns
                 .iter()

@@ -802,3 +802,24 @@ fn validation_agrees_with_rendering() {
         }
     }
 }
+
+/// A key given twice is an error, not the last one winning silently.
+#[test]
+fn rejects_duplicate_keys() {
+    rejects(
+        &BASE.replace(
+            "\"eye\": [0, 0, 3]",
+            "\"eye\": [0, 0, 3], \"eye\": [0, 0, 4]",
+        ),
+        "camera.eye: duplicate key",
+        "",
+    );
+    rejects(
+        &BASE.replace(
+            "\"indices\": [[0, 1, 2]]",
+            "\"indices\": [[0, 1, 2]], \"indices\": []",
+        ),
+        "mesh.indices: duplicate key",
+        "",
+    );
+}

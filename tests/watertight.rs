@@ -696,7 +696,7 @@ fn inside_a_box_every_pixel_once() {
         .iter()
         .map(|p| Vec3::from_f64(*p).expect("p"))
         .collect();
-    let indices: Vec<[u16; 3]> = mesh.indices.iter().map(|t| t.map(|i| i as u16)).collect();
+    let indices: Vec<[u16; 3]> = mesh.indices.clone();
     let eyes = [[0.0, 0.0, 0.0], [1.3, -2.1, 0.7], [-2.9, 0.4, 2.2]];
     let dirs = [
         [0.0, 0.0, -1.0],
@@ -740,7 +740,7 @@ fn near_plane_and_edges_nothing_outside() {
         .iter()
         .map(|p| Vec3::from_f64([p[0], 0.0, -p[1]]).expect("p"))
         .collect();
-    let indices: Vec<[u16; 3]> = floor.indices.iter().map(|t| t.map(|i| i as u16)).collect();
+    let indices: Vec<[u16; 3]> = floor.indices.clone();
     for (w, h) in [(64, 48), (1, 1), (1, 37), (53, 1), (3, 2)] {
         let mut t = CountingTarget::new(w, h);
         let stats = draw(&camera, &positions, &indices, false, &mut t);
