@@ -367,9 +367,8 @@ pub fn load_obj(text: &str) -> Result<MeshDesc, ObjError> {
 /// As [`load_obj`], reading the text from `open()` twice: once to count the
 /// elements, once to read them into vectors of exactly that size. The mesh
 /// then takes at most 6 bytes per triangle (as few as 2 bytes of text: a
-/// fanned face vertex `1 `), 12 with normals (at least 5 bytes: `1//1 `),
-/// and 24 per position and normal (at least 8 bytes of text each), plus,
-/// for re-indexed normals, at most
+/// fanned face vertex `1 `) and 24 per position and normal (at least 8
+/// bytes of text each), plus, for re-indexed normals, at most
 /// [`MAX_VERTICES`] entries of a map and two vectors: below 3 bytes of
 /// memory per byte of text, plus 6 MiB.
 ///
@@ -410,11 +409,13 @@ pub fn read_obj<R: BufRead>(
     }
     let mut positions: Vec<[f64; 3]> = Vec::with_capacity(n_pos.min(MAX_VERTICES));
     let mut normals: Vec<[f64; 3]> = Vec::with_capacity(n_nrm.min(MAX_VERTICES));
-    // Triangles as position indices, and as normal indices while every face
-    // vertex so far has one (dropped at the first that has none; not kept at
-    // all where the first pass saw one without).
+    // Where every face vertex names a normal (the first pass saw), each
+    // distinct (position, normal) pair becomes one vertex, numbered in order
+    // of first use; otherwise triangles keep the position indices.
+    let reindex = all_normals && n_tri > 0;
+    let mut map: HashMap<(u16, u16), u16> = HashMap::new();
+    let (mut out_pos, mut out_nrm) = (Vec::new(), Vec::new());
     let mut tris: Vec<[u16; 3]> = Vec::with_capacity(n_tri);
-    let mut ntris: Option<Vec<[u16; 3]>> = all_normals.then(|| Vec::with_capacity(n_tri));
     let mut verts: Vec<FaceVertex> = Vec::new();
     let mut input = open().map_err(|e| io(0, e))?;
     let mut line = 0;
@@ -442,50 +443,37 @@ pub fn read_obj<R: BufRead>(
                 if verts.len() < 3 {
                     return Err(err(ObjErrorKind::TooFewFaceVertices(verts.len())));
                 }
-                if verts.iter().any(|v| v.normal.is_none()) {
-                    ntris = None;
-                }
-                for k in 1..verts.len() - 1 {
-                    let tri = [verts[0], verts[k], verts[k + 1]];
-                    tris.push(tri.map(|v| v.pos));
-                    if let Some(n) = &mut ntris {
-                        n.push(tri.map(|v| v.normal.unwrap_or(0)));
+                let mut index = |v: FaceVertex| -> Result<u16, ObjError> {
+                    let Some(n) = v.normal.filter(|_| reindex) else {
+                        return Ok(v.pos);
+                    };
+                    if let Some(&i) = map.get(&(v.pos, n)) {
+                        return Ok(i);
                     }
+                    let i = u16::try_from(out_pos.len())
+                        .map_err(|_| err(ObjErrorKind::TooManyVertices))?;
+                    out_pos.push(positions[v.pos as usize]);
+                    out_nrm.push(normals[n as usize]);
+                    map.insert((v.pos, n), i);
+                    Ok(i)
+                };
+                let first = index(verts[0])?;
+                let mut prev = index(verts[1])?;
+                for &v in &verts[2..] {
+                    let next = index(v)?;
+                    tris.push([first, prev, next]);
+                    prev = next;
                 }
             }
             _ => {}
         }
     }
-    let ntris = ntris.filter(|_| !tris.is_empty());
-    let Some(ntris) = ntris else {
+    if !reindex {
         return Ok(MeshDesc {
             positions,
             normals: None,
             indices: tris,
         });
-    };
-    // Each distinct (position, normal) pair becomes one vertex, numbered in
-    // order of first use, in place of the position index.
-    let mut map: HashMap<(u16, u16), u16> = HashMap::new();
-    let mut out_pos = Vec::new();
-    let mut out_nrm = Vec::new();
-    for (tri, ntri) in tris.iter_mut().zip(&ntris) {
-        for (slot, &n) in tri.iter_mut().zip(ntri) {
-            let key = (*slot, n);
-            *slot = match map.get(&key) {
-                Some(&i) => i,
-                None => {
-                    let i = u16::try_from(out_pos.len()).map_err(|_| ObjError {
-                        line: 0,
-                        kind: ObjErrorKind::TooManyVertices,
-                    })?;
-                    out_pos.push(positions[key.0 as usize]);
-                    out_nrm.push(normals[key.1 as usize]);
-                    map.insert(key, i);
-                    i
-                }
-            };
-        }
     }
     Ok(MeshDesc {
         positions: out_pos,

@@ -1192,3 +1192,32 @@ proptest! {
         }
     }
 }
+
+/// An OBJ file whose (position, normal) pairs make more than 65 536
+/// vertices is refused at the face that makes one too many, with its line.
+#[test]
+fn obj_too_many_vertices_names_the_face() {
+    let mut text = String::new();
+    for i in 0..65536 {
+        text.push_str(&format!("v {i} 0 0\n"));
+    }
+    text.push_str("vn 0 0 1\nvn 0 1 0\n");
+    // Faces of three new positions with the first normal (65 535 pairs),
+    // then again with the second: the first such face makes pairs 65 536
+    // and 65 537, one too many.
+    let mut line = 65538;
+    let mut failing = None;
+    for normal in 1..=2 {
+        for first in (1..=65534).step_by(3) {
+            line += 1;
+            let f = |k: usize| format!("{}//{normal}", first + k);
+            text.push_str(&format!("f {} {} {}\n", f(0), f(1), f(2)));
+            if normal == 2 && failing.is_none() {
+                failing = Some(line);
+            }
+        }
+    }
+    let e = load_obj(&text).unwrap_err();
+    assert_eq!(e.kind, ObjErrorKind::TooManyVertices);
+    assert_eq!(e.line, failing.unwrap(), "{e}");
+}
