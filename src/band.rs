@@ -278,7 +278,10 @@ fn rows_of(y: [i64; 3]) -> (i64, i64) {
 
 /// The rows a triangle may draw in the viewport, or `None` when it draws
 /// nothing (behind the near plane, no area, culled, or no pixel centre in
-/// the viewport). A triangle crossing the near plane may draw any row.
+/// the viewport). A triangle crossing the near plane may draw any row. A
+/// sliver that snapping turned over is kept here and dropped when a band
+/// draws it (`Frame::triangle` decides that for the whole frame and the
+/// bands alike): this pass only spares work.
 #[inline(always)]
 fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
     f: &Frame<'_, '_, S, V, L>,

@@ -883,13 +883,15 @@ impl<'v, const N: usize> Triangle<'v, N> {
         if !(v.iter().all(RasterVertex::within_limits) && viewport.within_limits()) {
             return None;
         }
-        Self::setup_rows_within(v, viewport, rows, cull, Cover::Untested)
+        let culled = cull.then_some(Facing::Back);
+        Self::setup_rows_within(v, viewport, rows, culled, Cover::Untested)
     }
 
     /// [`Triangle::setup_rows`] for vertices the caller knows to be within
     /// the limits (the renderer's, which it clamps when it snaps them): no
     /// check. Outside them a debug build may panic on overflow and a
-    /// release build may draw the wrong pixels of `viewport`. `cover`: what
+    /// release build may draw the wrong pixels of `viewport`. `culled`: the
+    /// facing that draws nothing (`Some(Back)`: culling). `cover`: what
     /// the caller knows of a tiny box (the renderer tests an unclipped
     /// triangle's before it lights it). The pixels are the same whichever
     /// it says: a tiny box's walk from its mask gives the spans the walk
@@ -899,7 +901,7 @@ impl<'v, const N: usize> Triangle<'v, N> {
         v: &'v [RasterVertex<N>; 3],
         viewport: ClipRect,
         rows: (i32, i32),
-        cull: bool,
+        culled: Option<Facing>,
         cover: Cover,
     ) -> Option<Self> {
         debug_assert!(v.iter().all(RasterVertex::within_limits) && viewport.within_limits());
@@ -914,11 +916,12 @@ impl<'v, const N: usize> Triangle<'v, N> {
         // References, not copies, of the oriented vertices.
         let (facing, v) = if a < 0 {
             (Facing::Front, [&v[0], &v[2], &v[1]])
-        } else if cull {
-            return None;
         } else {
             (Facing::Back, [&v[0], &v[1], &v[2]])
         };
+        if culled == Some(facing) {
+            return None;
+        }
         let a = a.abs();
         // Pixel bounds of the samples (16x+8 within [min, max]).
         let minx = v[0].x.min(v[1].x).min(v[2].x);
@@ -1511,7 +1514,7 @@ pub(crate) mod tests {
             }
             let spans = |cover, rows| {
                 let mut out = Vec::new();
-                let t = Triangle::setup_rows_within(&v, vp, rows, false, cover);
+                let t = Triangle::setup_rows_within(&v, vp, rows, None, cover);
                 let exact = t.is_some_and(|t| t.exact);
                 if let Some(t) = t {
                     t.for_each_span(|s| out.push((s.y, s.x0, s.x1, s.start, s.step, s.bounded)));

@@ -10,6 +10,22 @@
 //! cross the near plane are clipped in clip space (SPEC.md 5); the rest of
 //! the frustum is left to the rasterizer's clipping to the target's bounds.
 //!
+//! # Facing
+//! A triangle faces the way its unsnapped window positions do. One that
+//! snapping to 1/16 pixel turns over (a sliver thinner than about √2/16
+//! pixel, whose corners each move up to 1/32 pixel on each axis) is
+//! degenerate and draws nothing, with culling on or off: a back face that
+//! snaps to a front face is not drawn over the surface in front of it, and
+//! a front face that snaps to a back face is not drawn as a back face
+//! (with culling off). The exact facing is the sign of a clip-space
+//! determinant (`clip_orientation`), taken only where the snapped area is
+//! small enough for snapping to have changed its sign (`snap_may_flip`)
+//! and for triangles that cross the near plane; the whole frame and the
+//! band renderer decide it in the same place (`Frame::triangle`). Where
+//! such a sliver lies inside a surface, its neighbours overlap across it
+//! once snapped, and the pixel centres under it are covered twice (README,
+//! "Stiff and extreme cases").
+//!
 //! Output goes through [`DrawTarget::fill_contiguous`], one call per span
 //! (or per run of pixels that pass the depth test), never per pixel.
 //!
@@ -45,7 +61,7 @@ use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::rasterizer::{
-    coverage, ClipRect, Cover, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
+    coverage, ClipRect, Cover, Facing, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
 };
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
@@ -874,6 +890,80 @@ fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
     mul_narrow(b[0] - a[0], c[1] - a[1]) - mul_narrow(b[1] - a[1], c[0] - a[0])
 }
 
+/// Whether snapping may have given the triangle of window positions `w`
+/// (its first three) a doubled area `a` ([`win_area`]) of another sign
+/// than its unsnapped positions have, or made it zero: then
+/// [`clip_orientation`] decides.
+///
+/// Each unsnapped coordinate `x` (1/16 pixel) becomes `X = ⌊x + ½⌋`: the
+/// snapped corner is `Sₖ = Pₖ + eₖ`, both components of `eₖ` in `(−½, ½]`.
+/// The doubled area is the cyclic sum `a = Σ Sₖ × Sₖ₊₁`, so the unsnapped
+/// one is `A = Σ (Sₖ − eₖ) × (Sₖ₊₁ − eₖ₊₁)
+/// = a − Σ eₖ × (Sₖ₊₁ − Sₖ₋₁) + Σ eₖ × eₖ₊₁`. Each `eₖ × d` is at most
+/// `½(|d_x| + |d_y|)`, and the last sum is the doubled area of a triangle
+/// inside a square of side 1, at most 1: `|A − a| ≤ p/2 + 1`, `p` the sum
+/// of `|dx| + |dy|` over the three sides. When `2|a| > p + 2`, `A` is not
+/// zero and has `a`'s sign. A sliver of longest side `L` and height `h`
+/// (its other two sides summing to about `L`) has `2|a| = 2Lh` and `p` at
+/// most about `2√2·L`: only slivers less than about √2/16 pixel thick, and
+/// triangles a few 1/16 pixel across, ask for the exact sign.
+///
+/// Ranges: coordinates within ±2²⁸ (`window` clamps them), so each
+/// difference is within ±2²⁹ and is the difference of the low 32 bits
+/// (`i32`, one instruction on a 32-bit core), each side's `|dx| + |dy|` is
+/// at most 2³⁰ and `p + 2` below 2³² (`u32`); `2|a|` is below 2⁶¹. A corner
+/// that `window` clamped (its unsnapped position beyond ±2²⁴ pixels) moved
+/// further than the snapping, which the bound does not cover: such a
+/// triangle keeps its snapped orientation unless the bound asks.
+#[inline(always)]
+fn snap_may_flip(a: i64, w: &[[i64; 3]]) -> bool {
+    let d = |j: usize, k: usize, i: usize| (w[k][i] as i32).wrapping_sub(w[j][i] as i32);
+    let side = |j: usize, k: usize| d(j, k, 0).unsigned_abs() + d(j, k, 1).unsigned_abs();
+    2 * a.unsigned_abs() <= u64::from(side(0, 1) + side(1, 2) + side(2, 0) + 2)
+}
+
+/// The sign of the doubled window-space area ([`win_area`]: −1 for a front
+/// face, 1 for a back face, 0 for none) of the triangle whose clip-space
+/// corners are `c`, before snapping.
+///
+/// The window position of `(x, y, w)` is `16·(x_w, y_w) = (8W·(x/w + 1),
+/// 8H·(1 − y/w))` ([`Frame::window`] before its floor), so the doubled
+/// area of three corners is `−64WH·D / (w₀w₁w₂)` with `D` the determinant
+/// of the rows `(xₖ, yₖ, wₖ)`: with every `w > 0` (corners in front of
+/// the near plane) its sign is `D`'s, negated. For a triangle the near plane cuts this is also the sign of
+/// each piece in front of it: clip space is linear, a piece's corners are
+/// `Λ·c` with `Λ` their barycentric coordinates (kept in the triangle's
+/// order by the clipping, `det Λ > 0`) and their determinant is
+/// `det Λ · D` (up to the rounding of the cut points, which moves them by
+/// at most half a clip unit).
+///
+/// Ranges ([`ProjectionCoeffs::clip`]): `|x|, |y| < 2³⁹` (a product below
+/// 2⁶² shifted by 24, plus a translation below 2³¹) and `|w| ≤ 2³¹` (an
+/// `I8F24` coordinate, or 2²⁴): each 2 × 2 minor is below 2⁷¹ (with `w`)
+/// or 2⁷⁹ (`x` by `y`), each term below 2¹¹⁰, `D` below 2¹¹²: `i128`.
+/// Asked only for slivers and triangles that the near plane cuts.
+///
+/// [`ProjectionCoeffs::clip`]: crate::camera::ProjectionCoeffs::clip
+#[inline(never)]
+fn clip_orientation(c: &[[i64; 4]; 3]) -> i64 {
+    let [x, y, w] = [0, 1, 3].map(|i| c.map(|p| p[i] as i128));
+    let d = x[0] * (y[1] * w[2] - y[2] * w[1]) - y[0] * (x[1] * w[2] - x[2] * w[1])
+        + w[0] * (x[1] * y[2] - x[2] * y[1]);
+    -(d.signum() as i64)
+}
+
+/// Whether the triangle of corners `c` faces otherwise than its snapped
+/// doubled area `a` says: the exact test behind [`snap_may_flip`], out of
+/// line (it is rare).
+#[inline(never)]
+fn turned_over<C: Corners, S: Specular, V: Viewer, L: LightSet>(
+    c: &mut C,
+    f: &Frame<'_, '_, S, V, L>,
+    a: i64,
+) -> bool {
+    clip_orientation(&[c.clip(f, 0), c.clip(f, 1), c.clip(f, 2)]) != a.signum()
+}
+
 /// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
 pub(crate) fn check_size<E>(size: Size) -> Result<(), RenderError<E>> {
     if size.width > MAX_TARGET_SIDE || size.height > MAX_TARGET_SIDE {
@@ -1271,14 +1361,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 };
             }
             // Facing is shared by every piece: decided (and culled) once,
-            // from the first piece with area.
-            let mut a = 0;
-            for k in 1..count - 1 {
-                a = win_area(&win, [0, k, k + 1]);
-                if a != 0 {
-                    break;
-                }
-            }
+            // from the unsnapped triangle; a piece that snapping turned
+            // the other way draws nothing (`fan`).
+            let a = clip_orientation(&clip);
             if self.rejects(a, &win[..count]) {
                 return Ok(());
             }
@@ -1294,7 +1379,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if cover == Cover::Mask(0) {
             return Ok(());
         }
+        // A sliver that snapping may have turned over is drawn only if it
+        // still faces the way its unsnapped corners do (a clipped polygon's
+        // facing is the unsnapped one already).
+        if tested && snap_may_flip(a, &win) && turned_over(c, self, a) {
+            return Ok(());
+        }
         let lit_back = a > 0 && self.r.options.two_sided;
+        // Every piece faces as the triangle does, or draws nothing.
+        let culled = Some(if a < 0 { Facing::Back } else { Facing::Front });
         let poly = &poly[..count];
         // Depth inside the u16 range, with the drift of a bounded span to
         // spare, at every vertex: then on every pixel of a bounded span.
@@ -1319,9 +1412,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     colour,
                     plain,
                 };
-                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
-                    self.span_flat(sp, colour, plain, sink, depth, st, z_inside)
-                })
+                self.fan(
+                    &verts[..count],
+                    culled,
+                    cover,
+                    stats,
+                    carry,
+                    extra,
+                    |sp, st| self.span_flat(sp, colour, plain, sink, depth, st, z_inside),
+                )
             }
             ShadingKind::Gouraud => {
                 // Three calls, not `[0, 1, 2].map(..)`: LLVM kept the map
@@ -1347,9 +1446,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     z_inside,
                     ..CarryExtra::default()
                 };
-                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
-                    self.span_gouraud(sp, sink, depth, st, z_inside)
-                })
+                self.fan(
+                    &verts[..count],
+                    culled,
+                    cover,
+                    stats,
+                    carry,
+                    extra,
+                    |sp, st| self.span_gouraud(sp, sink, depth, st, z_inside),
+                )
             }
             ShadingKind::Phong => {
                 let en = [
@@ -1376,9 +1481,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     z_inside,
                     ..CarryExtra::default()
                 };
-                self.fan(&verts[..count], cover, stats, carry, extra, |sp, st| {
-                    self.span_phong(sp, sink, depth, st, z_inside)
-                })
+                self.fan(
+                    &verts[..count],
+                    culled,
+                    cover,
+                    stats,
+                    carry,
+                    extra,
+                    |sp, st| self.span_phong(sp, sink, depth, st, z_inside),
+                )
             }
         }
     }
@@ -1452,12 +1563,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`, calling `span` for
-    /// each span until it fails; an unclipped triangle that goes on below
-    /// the band is handed to `carry`.
+    /// each span until it fails, except pieces facing `culled`; an
+    /// unclipped triangle that goes on below the band is handed to `carry`.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn fan<const N: usize, E, K: Carry>(
         &self,
         verts: &[RasterVertex<N>],
+        culled: Option<Facing>,
         cover: Cover,
         stats: &mut DrawStats,
         carry: &mut K,
@@ -1475,10 +1588,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     &copy
                 }
             };
-            // Culling was decided for the whole polygon; a piece agrees with
-            // it or has no area.
+            // Culling was decided for the whole polygon; a piece that
+            // snapping turned the other way is dropped.
             if let Some(t) =
-                Triangle::setup_rows_within(tri, self.viewport, self.rows, false, cover)
+                Triangle::setup_rows_within(tri, self.viewport, self.rows, culled, cover)
             {
                 stats.drawn = stats.drawn.saturating_add(1);
                 let rest = t.walk_rows(|s| {
