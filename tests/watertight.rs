@@ -865,7 +865,8 @@ fn grid(x0: f64, width: f64, cols: u32, y0: f64, depth: f64, rows: u32) -> MeshD
             positions.push([x, y0 + depth * f64::from(j) / f64::from(rows), 0.0]);
         }
     }
-    let at = |i: u32, j: u32| j * (cols + 1) + i;
+    // A test grid of at most a few hundred vertices: every index fits u16.
+    let at = |i: u32, j: u32| (j * (cols + 1) + i) as u16;
     let mut indices = Vec::new();
     for j in 0..rows {
         for i in 0..cols {
