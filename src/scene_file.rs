@@ -985,18 +985,8 @@ impl<R: std::io::BufRead> JsonReader<R> {
                 loop {
                     let item = self.value(&format!("{path}[{}]", items.len()), depth + 1)?;
                     items.push(item);
-                    match self.next_token()? {
-                        Some(b',') => {
-                            self.bump()?;
-                        }
-                        Some(b']') => {
-                            self.bump()?;
-                            return Ok(Value::Array(items));
-                        }
-                        _ => {
-                            self.bump()?;
-                            return self.syntax("expected `,` or `]`");
-                        }
+                    if self.closes(b']')? {
+                        return Ok(Value::Array(items));
                     }
                 }
             }
@@ -1052,19 +1042,21 @@ impl<R: std::io::BufRead> JsonReader<R> {
             if map.insert(key, v).is_some() {
                 return Err(key_error(sub, "duplicate key").into());
             }
-            match self.next_token()? {
-                Some(b',') => {
-                    self.bump()?;
-                }
-                Some(b'}') => {
-                    self.bump()?;
-                    return Ok(Value::Object(map));
-                }
-                _ => {
-                    self.bump()?;
-                    return self.syntax("expected `,` or `}`");
-                }
+            if self.closes(b'}')? {
+                return Ok(Value::Object(map));
             }
+        }
+    }
+
+    /// After an element of an array or object: `true` at its closing
+    /// bracket `close` (consumed), `false` after a comma (consumed).
+    fn closes(&mut self, close: u8) -> Read<bool> {
+        let next = self.next_token()?;
+        self.bump()?;
+        match next {
+            Some(b',') => Ok(false),
+            Some(c) if c == close => Ok(true),
+            _ => self.syntax(format_args!("expected `,` or `{}`", close as char)),
         }
     }
 
@@ -1200,18 +1192,8 @@ impl<R: std::io::BufRead> JsonReader<R> {
                     MeshArray::Indices => tris.push(triangle(&v, at)?),
                 }
                 n += 1;
-                match self.next_token()? {
-                    Some(b',') => {
-                        self.bump()?;
-                    }
-                    Some(b']') => {
-                        self.bump()?;
-                        break;
-                    }
-                    _ => {
-                        self.bump()?;
-                        return self.syntax("expected `,` or `]`");
-                    }
+                if self.closes(b']')? {
+                    break;
                 }
             }
         }

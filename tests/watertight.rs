@@ -347,16 +347,24 @@ fn closed_scene(mesh: MeshDesc, eye: [f64; 3], off: [f64; 2], w: u32, h: u32) ->
     s
 }
 
-/// Every pixel written at most once, every pixel inside the reference's
-/// silhouette exactly once, no hole, and kernel/reference coverage
-/// differing only on the reference's silhouette pixels.
-fn check_closed(name: &str, scene: &SceneDesc) -> usize {
+/// The scene converted for the kernel, and its whole frame rendered into a
+/// counting target.
+fn counted_render(scene: &SceneDesc) -> (KernelScene, CountingTarget) {
     let (w, h) = (scene.width, scene.height);
     let k = KernelScene::new(scene).expect("kernel scene");
     let mut t = CountingTarget::new(w, h);
     let mut depth = vec![0u16; (w * h) as usize];
     let mut cache = vec![CachedVertex::default(); scene.mesh.positions.len()];
     k.render(&mut t, &mut depth, &mut cache).expect("render");
+    (k, t)
+}
+
+/// Every pixel written at most once, every pixel inside the reference's
+/// silhouette exactly once, no hole, and kernel/reference coverage
+/// differing only on the reference's silhouette pixels.
+fn check_closed(name: &str, scene: &SceneDesc) -> usize {
+    let (w, h) = (scene.width, scene.height);
+    let (_, t) = counted_render(scene);
     let r = reference::render(scene).expect("reference");
     assert_eq!(t.outside, 0, "{name}: writes outside the target");
     let doubles = t.doubles();
@@ -907,11 +915,7 @@ fn edge_on(mesh: MeshDesc, eye: [f64; 3], yaw: f64, tilt: f64, cull: bool) -> Sc
 /// into its bands as the whole frame writes in all.
 fn writes_all_paths(what: &str, scene: &SceneDesc) -> CountingTarget {
     let (w, h) = (scene.width, scene.height);
-    let k = KernelScene::new(scene).expect("kernel scene");
-    let mut t = CountingTarget::new(w, h);
-    let mut depth = vec![0u16; (w * h) as usize];
-    let mut cache = vec![CachedVertex::default(); scene.mesh.positions.len()];
-    k.render(&mut t, &mut depth, &mut cache).expect("render");
+    let (k, t) = counted_render(scene);
     assert_eq!(t.outside, 0, "{what}: writes outside the target");
     let writes: u32 = t.counts.iter().map(|&c| u32::from(c)).sum();
     let frame = k.render_frame().expect("frame");
