@@ -975,11 +975,8 @@ impl<R: std::io::BufRead> JsonReader<R> {
                     self.mesh_array(path, kind)?;
                     return Ok(Value::Null);
                 }
-                self.keep(path, 0)?;
-                self.bump()?;
                 let mut items = Vec::new();
-                if self.next_token()? == Some(b']') {
-                    self.bump()?;
+                if self.open(path, b']')? {
                     return Ok(Value::Array(items));
                 }
                 loop {
@@ -1014,11 +1011,8 @@ impl<R: std::io::BufRead> JsonReader<R> {
     }
 
     fn object(&mut self, path: &str, depth: usize) -> Read<Value> {
-        self.keep(path, 0)?;
-        self.bump()?;
         let mut map = Map::new();
-        if self.next_token()? == Some(b'}') {
-            self.bump()?;
+        if self.open(path, b'}')? {
             return Ok(Value::Object(map));
         }
         loop {
@@ -1046,6 +1040,18 @@ impl<R: std::io::BufRead> JsonReader<R> {
                 return Ok(Value::Object(map));
             }
         }
+    }
+
+    /// Opens an array or object (its bracket is next), counted as one kept
+    /// value: `true` if it is empty (its closing bracket `close` consumed).
+    fn open(&mut self, path: &str, close: u8) -> Read<bool> {
+        self.keep(path, 0)?;
+        self.bump()?;
+        let empty = self.next_token()? == Some(close);
+        if empty {
+            self.bump()?;
+        }
+        Ok(empty)
     }
 
     /// After an element of an array or object: `true` at its closing

@@ -1193,6 +1193,14 @@ fn directional_half_vector_prepared_once_is_the_per_vertex_one() {
     assert!(checked > 30_000, "{checked} cases");
 }
 
+/// The colour `lights` give a point `p` facing +z (`Q.16` bits), diffuse
+/// material `m`, no ambient.
+fn diffuse_at<L: LightSet>(m: &Material<NoSpecular>, lights: &L, p: Vec3) -> [u32; 3] {
+    Lighting::<NoSpecular, InfiniteViewer, _>::new(m, Rgb::BLACK, lights, &Mat4::IDENTITY)
+        .shade(p, Unit3::Z)
+        .to_bits()
+}
+
 /// An area light of zero extent is k² samples at its centre, each carrying
 /// 1/k²: the same light as a point light there, for every k, within one
 /// `Q.16` unit before quantisation (the sum is divided once; a share folded
@@ -1209,21 +1217,7 @@ fn zero_extent_area_light_is_a_point_light() {
         for i in 0..=40 {
             let x = i as f32 * 0.025;
             let p = Vec3::from_f32(x, 0.0, 0.0).unwrap();
-            let a = Lighting::<NoSpecular, InfiniteViewer, _>::new(
-                &m,
-                Rgb::BLACK,
-                &area,
-                &Mat4::IDENTITY,
-            )
-            .shade(p, Unit3::Z);
-            let b = Lighting::<NoSpecular, InfiniteViewer, _>::new(
-                &m,
-                Rgb::BLACK,
-                &lamp,
-                &Mat4::IDENTITY,
-            )
-            .shade(p, Unit3::Z);
-            let (a, b) = (a.to_bits(), b.to_bits());
+            let (a, b) = (diffuse_at(&m, &area, p), diffuse_at(&m, &lamp, p));
             for c in 0..3 {
                 assert!(
                     a[c].abs_diff(b[c]) <= 1,
