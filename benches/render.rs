@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the standard scenes (issue 5): S1–S4 at 320 × 240
+//! Criterion benchmarks of the standard scenes : S1–S4 at 320 × 240
 //! into a [`Framebuffer`], in every shading mode the scene allows, with the
 //! fixed-point kernel and with the f64 reference in the same run, so the
 //! ratio fixed/reference reads from one run.

@@ -1,4 +1,4 @@
-//! Error against run time (issue 5): renders every standard scene in every
+//! Error against run time : renders every standard scene in every
 //! configuration that trades accuracy for time, measures each one's error
 //! against the f64 reference and its run time, and writes
 //! `report/error_vs_time.md` (a table) and `report/error_vs_time.svg` (error

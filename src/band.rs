@@ -692,7 +692,7 @@ impl Job<'_, '_> {
 /// (all 294). Once the whole frame culled before building its polygons
 /// (which the bands, culling in a pre-pass, did already), 32 entries gave
 /// +15.0 % and 48 gave +13.9 % (callgrind, `band_cost probe`; +14.4 % on
-/// session 16's code, whose whole frame is cheaper: the README's band table).
+/// a later, cheaper whole frame: the README's band table).
 ///
 /// ```
 /// use fixshade::band::CARRY;

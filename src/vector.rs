@@ -647,7 +647,7 @@ impl Mat4 {
             // at most 2^62 + 2^55, cannot bring the saturated or the exact
             // value back within ±2^61; both then round to beyond ±2^37 and
             // clamp to the same `I8F24` bound. (So did the four terms summed
-            // saturating one by one, this function's form until session 14,
+            // saturating one by one, its earlier form,
             // which a unit test compares it with.)
             let front = mul_i32(m[0], b[0]).saturating_add(mul_i32(m[1], b[1]));
             let back = mul_i32(m[2], b[2]) + ((m[3] as i64) << COORD_FRAC);
@@ -787,7 +787,7 @@ mod tests {
     use crate::rasterizer::tests::xorshift;
 
     /// `transform_point`'s row by exact `i128` sums, and by the four terms
-    /// summed saturating one by one (its form until session 14).
+    /// summed saturating one by one (its earlier form).
     fn reference_rows(m: &Mat4, p: Vec3) -> ([i32; 3], [i32; 3]) {
         let b = p.to_bits();
         let exact = [0, 1, 2].map(|r| {

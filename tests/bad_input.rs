@@ -1,4 +1,4 @@
-//! Issue 6, bad input: every float constructor given NaN, ±∞, negative,
+//! Bad input: every float constructor given NaN, ±∞, negative,
 //! zero-length or out-of-range values returns its documented error (or
 //! its documented clamp), and `Renderer::draw` given a bad mesh, a short
 //! cache or depth buffer, a too large target or a projection that does not

@@ -1,4 +1,4 @@
-//! Issue 2: the kernel's per-vertex colour (`Lighting::shade`, quantised to
+//! The kernel's per-vertex colour (`Lighting::shade`, quantised to
 //! RGB565) against the f64 reference (`reference::illuminate`, quantised as
 //! SPEC.md 6), within 1 LSB per channel (SPEC.md 7), on hand-picked and
 //! random inputs.

@@ -1,4 +1,4 @@
-//! Issue 6, property tests over random meshes, cameras and lights:
+//! Property tests over random meshes, cameras and lights:
 //!
 //! 1. no panic (the tests run with overflow checks in debug) and no write
 //!    outside the target (a counting `DrawTarget`, any origin), with the

@@ -1,4 +1,4 @@
-//! Issue 6: stiff and extreme cases in rendered scenes, each held to the
+//! Stiff and extreme cases in rendered scenes, each held to the
 //! bound of SPEC.md 7 against the f64 reference (≤ 1 LSB per channel,
 //! coverage mismatches ≤ 0.1 %), with no pixel sent outside the target and
 //! no overflow (the tests run with overflow checks in debug).

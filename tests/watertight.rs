@@ -1,4 +1,4 @@
-//! Issue 3: watertight rasterization. A counting `DrawTarget` records how
+//! Watertight rasterization. A counting `DrawTarget` records how
 //! many times each pixel is written (through `draw_iter` and
 //! `fill_contiguous` alike) and every write outside its bounding box.
 //!

@@ -1,7 +1,7 @@
 //! Arbitrary bytes → a small scene built with the kernel API → rendered
 //! twice (through `Renderer::draw` into a counting `DrawTarget`, and
 //! through `Renderer::draw_framebuffer` into a guarded `Framebuffer`), with
-//! the properties of issue 6 asserted:
+//! these properties asserted:
 //!
 //! * nothing panics or overflows (the callers build with overflow checks);
 //! * no pixel outside the target is sent, and the framebuffer's memory

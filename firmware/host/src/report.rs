@@ -172,7 +172,7 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
     let _ = writeln!(
         md,
         "# fixshade on Cortex-M: instructions, flash, RAM, stack\n\n\
-         Written by `scripts/firmware.sh` (issue 8). Instructions are counted by the QEMU plugin \
+         Written by `scripts/firmware.sh`. Instructions are counted by the QEMU plugin \
          `firmware/plugin/insn_count.c` between the markers around each render call \
          (`Renderer::new` and `draw_framebuffer`, callees included; clearing the frame and \
          depth buffer is not counted), 320 × 240, whole-frame buffer. \"M0+\" counts are of the \
