@@ -71,8 +71,17 @@ fn run() -> Result<(), String> {
     scenes.extend(file_scenes(&root.join("examples/scenes"))?);
 
     println!(
-        "{:<16} {:>6} {:>10} {:>10} {:>9} {:>8} {:>8} {:>9}",
-        "scene", "tris", "kernel ms", "ref ms", "max r/g/b", "mean", "exact %", "cov. mism"
+        "{:<16} {:>6} {:>10} {:>10} {:>9} {:>8} {:>8} {:>6} {:>6} {:>9}",
+        "scene",
+        "tris",
+        "kernel ms",
+        "ref ms",
+        "max r/g/b",
+        "mean",
+        "exact %",
+        "ties",
+        "steps",
+        "cov. mism"
     );
     for (i, (name, desc)) in scenes.iter().enumerate() {
         if let Some((same, _)) = scenes[..i].iter().find(|(_, d)| d == desc) {
@@ -90,7 +99,7 @@ fn run() -> Result<(), String> {
         let reference = reference.map_err(|e| format!("{name}: reference: {e}"))?;
         let e = compare(&frame.pixels, &frame.covered, &reference);
         println!(
-            "{:<16} {:>6} {:>10.3} {:>10.3} {:>9} {:>8.4} {:>8.2} {:>9}",
+            "{:<16} {:>6} {:>10.3} {:>10.3} {:>9} {:>8.4} {:>8.2} {:>6} {:>6} {:>9}",
             name,
             frame.stats.triangles,
             common::ms(kernel_time),
@@ -98,12 +107,15 @@ fn run() -> Result<(), String> {
             format!("{}/{}/{}", e.max_error[0], e.max_error[1], e.max_error[2]),
             e.mean_error,
             e.exact_share * 100.0,
+            e.depth_ties,
+            e.model_steps,
             e.only_kernel + e.only_reference,
         );
     }
     println!(
-        "max and mean error in RGB565 LSBs over pixels both drew; times are medians of {RUNS} \
-         renders (kernel into a framebuffer, reference in f64); images in {}",
+        "max and mean error in RGB565 LSBs over pixels both drew, depth ties and model steps \
+         (SPEC.md 7) counted apart; times are medians of {RUNS} renders (kernel into a \
+         framebuffer, reference in f64); images in {}",
         out_dir.display()
     );
     Ok(())

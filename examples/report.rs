@@ -619,43 +619,59 @@ fn markdown(rows: &[Row], args: &Args) -> String {
          mode, undithered. For a dithered row it is the dithered kernel output against the \
          undithered reference, so it shows what dithering costs in per-pixel error. \
          Max per channel r/g/b, mean, share of pixels exact, coverage mismatches \
-         (pixels drawn by one side only).\n\
+         (pixels drawn by one side only), depth ties and model steps (pixels the reference \
+         flags as a tie between surfaces' quantised depths or as within 2⁻¹² of a spot's \
+         cone edge or a specular cut-off: counted apart, not in the max, mean and exact \
+         share).\n\
          - **Model error**: the reference in this shading mode, quantised, against the \
          reference in Phong mode (the truth; for S2, Gouraud is the definition). It is what \
          the shading mode costs, whatever the arithmetic.\n\
          - **Total**: this configuration's output against the truth: the mean error plotted \
-         in `error_vs_time.svg`.\n"
+         in `error_vs_time.svg`. Model and total errors set apart the truth's depth ties \
+         and model steps.\n"
     );
     let _ = writeln!(w, "## Table\n");
     let _ = writeln!(
         w,
         "| scene | configuration | fixed-point max r/g/b | fixed-point mean | fixed-point exact | \
-         coverage mismatches | model max r/g/b | model mean | model exact | total mean | \
-         median time (ms) | IQR p25–p75 (ms) | min–max (ms) | instructions/frame |"
+         coverage mismatches | depth ties | model steps | model max r/g/b | model mean | \
+         model exact | total mean | median time (ms) | IQR p25–p75 (ms) | min–max (ms) | \
+         instructions/frame |"
     );
     let _ = writeln!(
         w,
-        "| --- | --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | --- | --- | ---: |"
+        "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | --- | --- | ---: |"
     );
     for r in rows {
-        let (fmax, fmean, fexact, fcov) = match &r.fixed {
+        let (fmax, fmean, fexact, fcov, fties, fsteps) = match &r.fixed {
             Some(e) => (
                 max3(e),
                 format!("{:.4}", e.mean_error),
                 format!("{:.2} %", e.exact_share * 100.0),
                 format!("{}", e.only_kernel + e.only_reference),
+                format!("{}", e.depth_ties),
+                format!("{}", e.model_steps),
             ),
-            None => ("—".into(), "—".into(), "—".into(), "—".into()),
+            None => (
+                "—".into(),
+                "—".into(),
+                "—".into(),
+                "—".into(),
+                "—".into(),
+                "—".into(),
+            ),
         };
         let _ = writeln!(
             w,
-            "| {} | {} | {} | {} | {} | {} | {} | {:.4} | {:.2} % | {:.4} | {} | {}–{} | {}–{} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.4} | {:.2} % | {:.4} | {} | {}–{} | {}–{} | {} |",
             r.config.scene,
             r.config.label(),
             fmax,
             fmean,
             fexact,
             fcov,
+            fties,
+            fsteps,
             max3(&r.model),
             r.model.mean_error,
             r.model.exact_share * 100.0,

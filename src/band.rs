@@ -98,9 +98,10 @@ const COLOUR_MASK: u64 = (1 << 51) - 1;
 /// One vertex's per-frame data for the band renderer in cached mode: 20
 /// bytes (4-aligned), against 104 for a [`CachedVertex`].
 ///
-/// Window position (`x`, `y` in 1/16 pixel, clamped to ±2²⁸), depth (`Q.24`
-/// of `z_w`, clamped to ±2³⁰), and one lit colour (three 17-bit `Q.16`
-/// channels, 0 ..= 65536) with three flags, packed in 64 bits. The eye
+/// Window position (`x`, `y` in 1/16 pixel, clamped to ±2²⁸), depth
+/// attribute (`z_w·65535·2⁸ + 2⁷`, clamped to ±2³⁰), and one lit colour
+/// (three 17-bit `Q.16` channels, 0 ..= 65536) with three flags, packed in
+/// 64 bits. The eye
 /// position and normal are not kept: flat and Phong shading, lighting a
 /// vertex and clipping a triangle at the near plane recompute them from the
 /// mesh, which gives the same values.

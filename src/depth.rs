@@ -1,10 +1,13 @@
 //! The optional depth buffer, in storage the caller provides.
 //!
-//! Depth is `z_w` (SPEC.md 1) quantised to `u16`: `z16 = ⌊z_w · 65536⌋`
-//! clamped to 65535, cleared to 65535 (`z_w = 1`); a pixel is drawn where
-//! its `z16` is less than the stored one (SPEC.md 5), and then stored. A
-//! scene that needs no depth test uses [`NoDepth`], which has no storage
-//! and whose test the compiler removes.
+//! Depth is `z_w` (SPEC.md 1) quantised to `u16` as SPEC.md 5 states:
+//! `d = ⌊z_w · 65535 + ½⌋` (clamped to 0 ..= 65535), cleared to 65535
+//! (`z_w = 1`); a pixel is drawn where its `d` is less than the stored one,
+//! and then stored. The renderer interpolates the attribute
+//! `z_w · 65535 · 2⁸ + 2⁷` and takes `d` as its `>> 8` (the `2⁷` is the
+//! half of the rounding), so the per-pixel work is one shift. A scene that
+//! needs no depth test uses [`NoDepth`], which has no storage and whose
+//! test the compiler removes.
 
 /// A depth test: [`NoDepth`] or [`DepthBuffer`].
 ///

@@ -1217,15 +1217,24 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
     }
 
-    /// Window position (1/16 pixel, clamped to ±2²⁸) and depth (`Q.24` of
-    /// `z_w`) of a clip-space point in front of the near plane (SPEC.md 1,
-    /// 5): `X = ⌊x_w·16 + ½⌋`.
+    /// Window position (1/16 pixel, clamped to ±2²⁸) and depth attribute of
+    /// a clip-space point in front of the near plane (SPEC.md 1, 5):
+    /// `X = ⌊x_w·16 + ½⌋`, `Z = ⌊z_w·65535·2⁸ + 2⁷⌋` (clamped to ±2³⁰).
     ///
-    /// `|x_c| < 2³⁸` (a projection coefficient below 2³¹ raw times an
-    /// `I8F24` coordinate, shifted by 24) and `8W ≤ 2²³`: `|2·x_c·8W| < 2⁶²`;
-    /// with `0 < w < 2³²`, each numerator is within ±(2⁶² + 2³²), so it
-    /// minus the divisor `2w` (below 2³³) stays within `i64`
-    /// ([`floor_div_all`]'s conditions).
+    /// The depth attribute is scaled so that `Z >> 8` is SPEC.md 5's
+    /// quantised depth `d = ⌊z_w·65535 + ½⌋`: with `z_w = (z_c/w + 1)/2`,
+    /// `z_w·65535·2⁸ + 2⁷ = z_c·K/w + 2²³` where `K = 65535·2⁷ = 2²³ − 2⁷`
+    /// (the offset `65535·2⁷ + 2⁷` is `2²³`), so `Z = ⌊z_c·K/w⌋ + 2²³`, and
+    /// `⌊⌊x⌋/2⁸⌋ = ⌊x/2⁸⌋` makes `Z >> 8 = ⌊z_w·65535 + ½⌋` exactly for the
+    /// clip coordinates given. The span loop takes `Z >> 8` per pixel as
+    /// before; only this per-vertex scale changed.
+    ///
+    /// `|x_c|, |z_c| < 2³⁸ + 2³¹` (a projection coefficient below 2³¹ raw
+    /// times an `I8F24` coordinate, shifted by 24, plus an offset below
+    /// 2³¹), `8W ≤ 2²³` and `2K < 2²⁴`: `|2·x_c·8W|`, `|z_c·2²⁴|` and
+    /// `|2·z_c·K|` are below `2⁶² + 2⁵⁵`; with `0 < w < 2³²`, each
+    /// numerator is within ±(2⁶² + 2⁵⁶), so it minus the divisor `2w`
+    /// (below 2³³) stays within `i64` ([`floor_div_all`]'s conditions).
     #[inline]
     pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
         let w = c[3];
@@ -1233,13 +1242,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             return [0, 0, 0];
         }
         let (hw, hh) = (8 * self.w, 8 * self.h);
-        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w). The quotients
-        // are exact within ±2³¹, beyond which each clamp below decides
-        // alike (8W, 8H ≤ 2²³).
+        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w), each rounded
+        // (the `+ w` over `2w`); the depth z_c·K/w floored, with
+        // 2K = 2²⁴ − 2⁸ as two shifts (no 64-bit multiply where there is
+        // none in hardware). The quotients are exact within ±2³¹, beyond
+        // which each clamp below decides alike (the offsets 8W, 8H and 2²³
+        // are at most 2²³, the clamps at 2²⁸ and 2³⁰).
         let n = [
             mul_by_narrow(2 * c[0], hw) + w,
             mul_by_narrow(-2 * c[1], hh) + w,
-            2 * c[2] * (1 << 23) + w,
+            c[2] * (1 << 24) - c[2] * (1 << 8),
         ];
         let [x, y, z] = if cfg!(fixshade_soft_div64) {
             floor_div_all(n, 2 * w)
@@ -1391,6 +1403,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let poly = &poly[..count];
         // Depth inside the u16 range, with the drift of a bounded span to
         // spare, at every vertex: then on every pixel of a bounded span.
+        // The attribute is `z_w·65535·2⁸ + 2⁷` (`window`); in
+        // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
+        // cleared 65535, so the span needs no clamp.
         let z_inside = win[..count]
             .iter()
             .all(|w| (DRIFT..(65535 << 8) - DRIFT).contains(&w[2]));

@@ -259,7 +259,8 @@ pub trait SpanShader {
         }
     }
     /// Runs the depth test along a row of pixels and their depths (`z`,
-    /// `dz`: depth at the first pixel and its step, `Q.24` of `z_w`),
+    /// `dz`: depth attribute at the first pixel and its step,
+    /// `z_w·65535·2⁸ + 2⁷`, whose `>> 8` is the stored `d`),
     /// writing depth and colour where it passes; returns how many passed.
     /// Where the depth stays in `0 .. 65535 · 2⁸` on the whole row, this is
     /// [`SpanShader::depth_row_inside`]; elsewhere depths are clamped.
@@ -300,7 +301,8 @@ pub trait SpanShader {
 }
 
 /// `(z, dz)` as `i32` if the depth `z + k·dz` stays in `0 .. 65535 · 2⁸`
-/// for `k < len` (it is linear: both ends inside suffice).
+/// for `k < len` (it is linear: both ends inside suffice). There `z >> 8`
+/// is 0 ..= 65534, the clamp's value, so skipping the clamp changes nothing.
 #[inline(always)]
 fn depth_inside(z: i64, dz: i64, len: usize) -> Option<(i32, i32)> {
     // Saturating: the rasterizer's spans keep |dz| ≤ 2^40 and len ≤ 2^20,
@@ -1034,8 +1036,9 @@ impl SpanShader for ClampedGouraud {
     }
 }
 
-/// A span's depth: `Q.24` of `z_w` at its first pixel and the step per
-/// pixel.
+/// A span's depth: the attribute `z_w·65535·2⁸ + 2⁷` at its first pixel
+/// and its step per pixel; the stored depth is the attribute `>> 8`, which
+/// is `d = ⌊z_w·65535 + ½⌋` (SPEC.md 5, [`crate::depth`]).
 ///
 /// ```
 /// use fixshade::depth::DepthBuffer;
@@ -1045,7 +1048,8 @@ impl SpanShader for ClampedGouraud {
 /// let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
 /// let mut depth = DepthBuffer::new(&mut zs, 4, 1).unwrap();
 /// let sh = FlatShader { plain: 1, shade: Default::default(), dither: false, x: 0, y: 0 };
-/// // z_w = ½ at the first pixel, then 2⁻⁸ further per pixel: stored as ⌊z_w · 65536⌋.
+/// // z_w = ½ at the first pixel (2²³ = ½·65535·2⁸ + 2⁷), then 256/65535 further
+/// // per pixel: stored as d = ⌊z_w · 65535 + ½⌋.
 /// let z = SpanDepth { z: 1 << 23, dz: 1 << 16, inside: true };
 /// emit(&mut FramebufferSink { fb: &mut fb }, &mut depth, 0, 0, 4, z, sh).unwrap();
 /// assert_eq!(zs, [0x8000, 0x8100, 0x8200, 0x8300]);

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_within_bound, kernel_vs_reference};
+use common::{assert_within_bound, flagged_error, kernel_vs_reference};
 use fixshade::generate;
 use fixshade::scene_desc::{
     CameraDesc, LightDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
@@ -14,7 +14,11 @@ use fixshade::standard_scenes::{s1, s2, s3, s4, sphere_scene};
 fn sphere_gouraud_directional_s1() {
     let (e, k) = kernel_vs_reference(&s1(320, 240));
     assert_within_bound("S1 sphere gouraud", &e);
-    assert!(e.exact_share >= 0.99, "exact share {:.4}", e.exact_share);
+    assert!(
+        e.exact_share >= 0.99,
+        "exact share {:.4}: {e}",
+        e.exact_share
+    );
     assert!(k.stats.pixels > 10_000);
 }
 
@@ -24,7 +28,11 @@ fn sphere_phong_shading() {
     s.shading = Shading::Phong;
     let (e, _) = kernel_vs_reference(&s);
     assert_within_bound("sphere phong", &e);
-    assert!(e.exact_share >= 0.98, "exact share {:.4}", e.exact_share);
+    assert!(
+        e.exact_share >= 0.98,
+        "exact share {:.4}: {e}",
+        e.exact_share
+    );
 }
 
 #[test]
@@ -63,6 +71,161 @@ fn cube_flat() {
     s.lights = vec![LightDesc::point([3.0, 4.0, 2.0])];
     let (e, _) = kernel_vs_reference(&s);
     assert_within_bound("cube flat", &e);
+}
+
+/// The kernel's depth buffer holds SPEC.md 5's `d = ⌊z_w·65535 + ½⌋`: a
+/// tilted plane whose corners sit on pixel corners (so snapping moves
+/// none) is drawn orthographically, where `z_w` is exactly affine in the
+/// pixel position, and each stored depth is compared with `d` at the
+/// pixel's centre.
+///
+/// The kernel interpolates the attribute `z_w·65535·2⁸ + 2⁷` with integer
+/// gradients per pixel, each rounded (½ unit), from a vertex at most 64
+/// pixels away on each axis: the value at a pixel is off by at most
+/// ½·(64 + 64) units from the exact plane through the vertex values, plus
+/// ½ for the anchor's rounding, below 1 for each vertex's floor and well
+/// below 1 for the fixed-point projection: under 68 units, 68/256 of a
+/// depth step. So the stored depth is `d` wherever `z_w·65535` lies
+/// further than that from a half, and within 1 of it everywhere.
+#[test]
+fn kernel_depth_is_the_spec_quantisation() {
+    use fixshade::framebuffer::Framebuffer;
+    use fixshade::reference::quantize_depth;
+    use fixshade::render::CachedVertex;
+    use fixshade::scene_desc::MeshDesc;
+    use fixshade::scene_kernel::KernelScene;
+    let size = 64u32;
+    let h = f64::from(size) / 2.0;
+    // z = αX + βY, a plane through both triangles; the view looks down −Z
+    // from z = 1 with near 0.5 and far 4: z_w = (0.5 − z)/3.5.
+    let (a, b) = (0.0071, -0.0043);
+    let z = |x: f64, y: f64| a * x + b * y;
+    let corners = [[-h, -h], [h, -h], [h, h], [-h, h]];
+    let mesh = MeshDesc {
+        positions: corners.iter().map(|&[x, y]| [x, y, z(x, y)]).collect(),
+        normals: None,
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+    };
+    let camera = CameraDesc {
+        eye: [0.0, 0.0, 1.0],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        near: 0.5,
+        far: 4.0,
+        projection: Projection::Orthographic { height: 2.0 * h },
+    };
+    let mut s = SceneDesc::new(size, size, camera, mesh);
+    s.lights = vec![LightDesc::directional([0.0, 0.0, 1.0])];
+    let k = KernelScene::new(&s).expect("kernel scene");
+    let n = (size * size) as usize;
+    let (mut px, mut depth) = (vec![0u16; n], vec![0u16; n]);
+    let mut cache = vec![CachedVertex::default(); 4];
+    let mut fb = Framebuffer::new(&mut px, size, size).unwrap();
+    let stats = k
+        .render_framebuffer(&mut fb, &mut depth, &mut cache)
+        .unwrap();
+    assert_eq!(stats.pixels as usize, n);
+    let (mut equal, mut far_from_half) = (0, 0);
+    for (i, &stored) in depth.iter().enumerate() {
+        // Window (x, y) is object (x − h, h − y).
+        let (x, y) = (
+            (i as u32 % size) as f64 + 0.5,
+            (i as u32 / size) as f64 + 0.5,
+        );
+        let z_w = (0.5 - z(x - h, h - y)) / 3.5;
+        let d = quantize_depth(z_w);
+        let clear = ((z_w * 65535.0).fract() - 0.5).abs() >= 68.0 / 256.0;
+        let off = stored.abs_diff(d);
+        assert!(off <= 1, "pixel {i}: {stored} for {d}");
+        assert!(!clear || off == 0, "pixel {i}: {stored} for {d} ({z_w})");
+        equal += usize::from(off == 0);
+        far_from_half += usize::from(clear);
+    }
+    println!("kernel depth: {equal} of {n} pixels store d, {far_from_half} must");
+    assert!(
+        far_from_half > n / 3,
+        "too few pixels tested: {far_from_half}"
+    );
+}
+
+/// A closed cube, flat-shaded, two-sided and unculled, with the depth
+/// test: the back faces are drawn too (and lit from behind), and where a
+/// back face meets a front face at the silhouette both cover the same
+/// pixels with depths within one quantisation step of each other. Which
+/// of the two a 16-bit depth test keeps there is ill-conditioned, so the
+/// measure counts those pixels apart as depth ties (SPEC.md 7); every
+/// other pixel holds the bound.
+#[test]
+fn cube_flat_two_sided_unculled() {
+    let camera = CameraDesc {
+        eye: [2.0, 1.5, 3.0],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+        near: 0.1,
+        far: 20.0,
+        projection: Projection::Perspective { fovy_deg: 50.0 },
+    };
+    let mut s = SceneDesc::new(160, 120, camera, generate::cube(1.5));
+    s.shading = Shading::Flat;
+    s.cull = false;
+    s.two_sided = true;
+    assert!(s.depth);
+    s.lights = vec![
+        LightDesc::point([3.0, 4.0, 2.0]),
+        LightDesc::directional([-1.0, -0.5, -2.0]),
+    ];
+    let (e, k) = kernel_vs_reference(&s);
+    assert_within_bound("cube flat two-sided unculled", &e);
+    let r = fixshade::reference::render(&s).expect("reference");
+    let (over, worst) = flagged_error(&k, &r, &r.tie);
+    println!("cube: {over} tie pixels more than 1 LSB off, up to {worst} LSB");
+    assert!(
+        e.exact_share >= 0.99,
+        "exact share {:.4}: {e}",
+        e.exact_share
+    );
+    // Back faces were rasterized, not culled: twelve triangles drawn.
+    assert_eq!(k.stats.drawn, 12);
+    // The silhouette's ties are found and reported, and they are few: a
+    // line of pixels, not the faces.
+    assert!(e.depth_ties > 0, "no depth tie found: {e}");
+    assert!(
+        e.depth_ties * 100 < e.covered_both,
+        "ties are more than 1 % of the pixels: {e}"
+    );
+}
+
+/// The gallery's spot-lit floor (`examples/scenes/spotlight.json`: two
+/// spots, Blinn specular, Phong shading, local viewer). Each cone's edge
+/// crosses the floor, and where `cosγ` is within 2⁻¹² of `cos(cutoff)` the
+/// model itself jumps (the spot factor falls from `cos(cutoff)^p` to 0):
+/// a pixel there may land on either side in fixed point, by far more than
+/// 1 LSB. The measure counts those pixels apart as model steps; every
+/// other pixel holds the bound.
+#[test]
+fn spot_cone_edges_counted_as_model_steps() {
+    use fixshade::scene_file::load_scene;
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/spotlight.json"
+    );
+    let s = load_scene(path).expect("spotlight scene");
+    assert!(s.lights.iter().all(|l| matches!(l, LightDesc::Spot { .. })));
+    let (e, k) = kernel_vs_reference(&s);
+    assert_within_bound("spotlight scene", &e);
+    let r = fixshade::reference::render(&s).expect("reference");
+    let (over, worst) = flagged_error(&k, &r, &r.step);
+    println!("spotlight scene: {over} step pixels more than 1 LSB off, up to {worst} LSB");
+    assert!(
+        e.exact_share >= 0.99,
+        "exact share {:.4}: {e}",
+        e.exact_share
+    );
+    assert!(e.model_steps > 0, "no cone edge found: {e}");
+    // The steps are the cones' outlines, thin lines: well under 1 % of the
+    // pixels.
+    assert!(e.model_steps * 100 < e.covered_both, "{e}");
+    assert_eq!(e.depth_ties, 0, "a single floor has no ties: {e}");
 }
 
 #[test]
@@ -221,7 +384,7 @@ fn area_lights_up_to_the_largest_k() {
                 assert_within_bound(&name, &e);
                 assert!(
                     e.exact_share >= 0.99,
-                    "{name}: exact share {:.4}",
+                    "{name}: exact share {:.4}: {e}",
                     e.exact_share
                 );
             }

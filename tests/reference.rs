@@ -4,8 +4,8 @@
 use fixshade::error_measure::{compare, compare_checked};
 use fixshade::generate::{cube, load_obj, plane, sphere, torus, ObjErrorKind};
 use fixshade::reference::{
-    eye_lights, illuminate, look_at, quantize_rgb565, render, vertex_normals, EyeLight,
-    LightingModel, RefFrame,
+    eye_lights, illuminate, look_at, quantize_depth, quantize_rgb565, render, vertex_normals,
+    EyeLight, LightingModel, RefFrame,
 };
 use fixshade::scene_desc::{
     CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc, SceneError, Shading,
@@ -627,6 +627,64 @@ fn depth_test_keeps_nearest() {
     }
 }
 
+/// Depth ties (SPEC.md 7): where a surface's quantised depth comes within
+/// 1 of the depth stored by another, whichever wins, the pixel is flagged;
+/// a surface that wins by 2 or more clears the flag; without the depth
+/// test nothing is flagged.
+#[test]
+fn depth_ties_are_flagged() {
+    let size = 8u32;
+    // In `ortho_scene`, z_w = (0.5 − z)/3.5: d = ⌊z_w·65535 + ½⌋ is 9362 at
+    // z = 0 (9362.14) and moves by one per 3.5/65535 of z.
+    let step = 3.5 / 65535.0;
+    assert_eq!(quantize_depth(0.5 / 3.5), 9362);
+    let h = f64::from(size);
+    // Squares covering the view, `k` depth steps behind z = 0.
+    let scene = |ks: &[f64], depth: bool| {
+        let mut positions = Vec::new();
+        for &k in ks {
+            let z = -k * step;
+            positions.extend([
+                [-h, -h, z],
+                [h, -h, z],
+                [h, h, z],
+                [-h, -h, z],
+                [h, h, z],
+                [-h, h, z],
+            ]);
+        }
+        let n = positions.len() as u16 / 3;
+        let mesh = MeshDesc {
+            positions,
+            normals: None,
+            indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+        };
+        let mut s = ortho_scene(size, mesh);
+        s.depth = depth;
+        s
+    };
+    let cases: [(&[f64], bool); 7] = [
+        (&[0.0, 0.0], true),        // equal: the second loses by 0
+        (&[0.0, 1.0], true),        // the second loses by 1
+        (&[1.0, 0.0], true),        // the second wins by 1
+        (&[0.0, 2.0], false),       // loses by 2
+        (&[2.0, 0.0], false),       // wins by 2
+        (&[0.0, 1.0, -2.0], false), // a tie, then a win by 2 over both
+        (&[0.0, 1.0, 3.0], true),   // a tie, then a clear loss
+    ];
+    for (ks, tie) in cases {
+        let frame = render(&scene(ks, true)).unwrap();
+        assert_eq!(frame.covered_count(), (size * size) as usize, "{ks:?}");
+        assert!(
+            frame.tie.iter().all(|&t| t == tie),
+            "{ks:?}: tie {tie} expected"
+        );
+        assert!(frame.step.iter().all(|&t| !t), "{ks:?}");
+        let frame = render(&scene(ks, false)).unwrap();
+        assert!(frame.tie.iter().all(|&t| !t), "{ks:?} without depth test");
+    }
+}
+
 #[test]
 fn triangle_crossing_near_plane_renders_without_nan() {
     let camera = CameraDesc {
@@ -1022,10 +1080,10 @@ fn obj_errors_name_the_line() {
 // ---------------------------------------------------------- error measure
 
 fn sample_frame() -> RefFrame {
-    RefFrame {
-        width: 3,
-        height: 2,
-        color: vec![
+    RefFrame::new(
+        3,
+        2,
+        vec![
             Some([0.1, 0.2, 0.3]),
             Some([1.0, 0.5, 0.0]),
             None,
@@ -1033,7 +1091,7 @@ fn sample_frame() -> RefFrame {
             None,
             Some([0.0, 0.0, 1.0]),
         ],
-    }
+    )
 }
 
 #[test]

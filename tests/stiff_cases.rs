@@ -200,6 +200,9 @@ fn shininess_4096_still_has_a_highlight() {
 /// N·L and N·H within 10⁻⁴ of 0 and of 1 on a drawn quad (every pixel the
 /// same input). N·L just above 0 is drawn without specular (the switch at
 /// N·L = 0 is a discontinuity of the equation); N·L just below 0 is dark.
+/// With specular, N·L within 2⁻¹² of 0 is a step of the model that the
+/// measure counts apart (every pixel of the quad); at ±10⁻³, four times
+/// that margin, no pixel is, and every pixel holds the bound.
 #[test]
 fn dot_products_within_1e4_of_0_and_1() {
     let n = [0.0, 0.0, 1.0];
@@ -252,7 +255,27 @@ fn dot_products_within_1e4_of_0_and_1() {
         }
     }
     for (name, s) in &cases {
-        check(name, s);
+        let e = check(name, s);
+        assert_eq!(e.model_steps, 0, "{name}: {e}");
+    }
+    // The specular cut-off itself, with Blinn–Phong: H = normalise(L + V)
+    // is 45° from N, so the term it cuts off is large on both sides.
+    for nl in [1e-4f64, -1e-4, 1e-3, -1e-3] {
+        let l = [(1.0 - nl * nl).sqrt(), 0.0, nl];
+        let mut s = quad(n, vec![directional(l, 1.0)], material(0.5, 0.5, 1.0), 24);
+        s.specular_model = SpecularModel::Blinn;
+        let name = format!("N·L = {nl}, specular Blinn, n = 1");
+        let e = measure(&name, &s);
+        println!("{name}: {e}");
+        assert_eq!(e.covered_both, 24 * 24, "{name}: {e}");
+        if nl.abs() <= reference::STEP_MARGIN {
+            // Every pixel on the step: none held to the bound.
+            assert_eq!((e.model_steps, e.compared), (24 * 24, 0), "{name}: {e}");
+            assert_eq!(e.coverage_mismatch_share, 0.0, "{name}: {e}");
+        } else {
+            assert_within_bound(&name, &e);
+            assert_eq!(e.model_steps, 0, "{name}: {e}");
+        }
     }
 }
 
@@ -322,6 +345,55 @@ fn narrow_and_wide_spots() {
             let e = check(&format!("spot cutoff {cutoff}° exponent {p}"), &s);
             assert!(e.covered_both == (size * size) as u64);
         }
+    }
+}
+
+/// A spot cone whose edge passes exactly through pixel centres: the spot
+/// stands over a pixel centre of the 48 × 48 quad and its 30° cone meets
+/// the plane in a circle of radius 10 pixels, through the twelve centres
+/// at offsets (±10, 0), (0, ±10), (±6, ±8) and (±8, ±6). There the model
+/// jumps (the spot factor falls from `cos(30°)^p` to 0), so the reference
+/// flags them as model steps; the flags lie on the circle and nowhere else,
+/// and every other pixel holds the bound.
+#[test]
+fn spot_cone_edge_through_pixel_centres() {
+    let size = 48u32;
+    let px = 2.0 / f64::from(size); // a pixel's side in plane units
+    let centre = [0.5 * px, -0.5 * px]; // the centre of pixel (24, 24)
+    let (cutoff, radius): (f64, f64) = (30.0, 10.0);
+    let h = radius * px / cutoff.to_radians().tan();
+    for p in [0.0, 1.0, 16.0] {
+        let l = LightDesc::Spot {
+            position: [centre[0], centre[1], h],
+            axis: [0.0, 0.0, -1.0],
+            cutoff_deg: cutoff,
+            exponent: p,
+            diffuse: [1.0, 0.9, 0.8],
+            specular: [0.6; 3],
+            attenuation: [1.0, 0.0, 0.0],
+        };
+        let mut s = quad([0.0, 0.0, 1.0], vec![l], material(0.8, 0.4, 32.0), size);
+        s.global_ambient = [0.2; 3];
+        let name = format!("spot cone edge through pixel centres, exponent {p}");
+        let e = check(&name, &s);
+        assert!(e.exact_share >= 0.99, "{name}: {e}");
+        let r = reference::render(&s).expect("reference");
+        let mut on_circle = 0;
+        for (i, &step) in r.step.iter().enumerate() {
+            let (x, y) = ((i as u32 % size) as f64, (i as u32 / size) as f64);
+            let dist = ((x - 24.0).powi(2) + (y - 24.0).powi(2)).sqrt();
+            // 2⁻¹² in cosγ is about 0.011 pixel of radius here.
+            if step {
+                assert!((dist - radius).abs() < 0.05, "{name}: step at ({x}, {y})");
+            }
+            on_circle += usize::from(dist == radius);
+            if dist == radius {
+                assert!(step, "{name}: ({x}, {y}) on the edge, not flagged");
+            }
+        }
+        assert_eq!(on_circle, 12);
+        assert_eq!(e.model_steps, r.step.iter().filter(|&&f| f).count() as u64);
+        assert!(e.model_steps >= 12, "{name}: {e}");
     }
 }
 

@@ -244,7 +244,8 @@ fn attenuation_factor(c: [f64; 3], d: f64) -> f64 {
 ///
 /// `n` is the normal to use, already negated by the caller for a lit back
 /// face; it is normalised here (zero length: no diffuse or specular). The
-/// result is clamped to [0, 1] per channel.
+/// result is clamped to [0, 1] per channel. [`illuminate_with_margin`] also
+/// says how close the point is to a step of the model.
 ///
 /// ```
 /// use fixshade::reference::{illuminate, EyeLight, LightingModel};
@@ -261,9 +262,52 @@ fn attenuation_factor(c: [f64; 3], d: f64) -> f64 {
 /// assert!((c[0] - (0.2 * 0.2 + 0.8)).abs() < 1e-12);
 /// ```
 pub fn illuminate(m: &LightingModel, p: [f64; 3], n: [f64; 3]) -> [f64; 3] {
+    illuminate_with_margin(m, p, n).0
+}
+
+/// [`illuminate`], and the point's distance from the nearest step of the
+/// model (SPEC.md 7), `f64::INFINITY` where there is none.
+///
+/// The equation jumps, rather than changing continuously, in two places:
+/// at a spot's cone edge (the spot factor falls from `cos(cutoff)^p` to 0
+/// where `cosγ` crosses `cos(cutoff)`) and at a specular term's cut-off
+/// (the specular term falls to 0 where `N·L` crosses 0). A fixed-point
+/// evaluation that lands on the other side of such a step differs by the
+/// step's height, however small its own error, so the error measure counts
+/// those pixels apart. The margin is the smallest of `|cosγ − cos(cutoff)|`
+/// over the spots whose step has a height here (`N·L > 0`, so the spot
+/// lights the point on its inner side, and `cos(cutoff)^p > 0`) and `|N·L|`
+/// over the lights whose specular term has a height here (inside any cone,
+/// a non-zero `Is·Ks` and specular base). A zero normal lights nothing:
+/// no step.
+///
+/// ```
+/// use fixshade::reference::{illuminate_with_margin, EyeLight, LightingModel};
+/// use fixshade::scene_desc::{MaterialDesc, SpecularModel, Viewer};
+/// let material = MaterialDesc { specular: [0.5; 3], shininess: 8.0, ..MaterialDesc::default() };
+/// // A spot 1 unit above the origin shining down, 30° cone; points on the
+/// // plane y = 0 facing up.
+/// let lights = [EyeLight::Spot {
+///     position: [0.0, 1.0, 0.0], axis: [0.0, -1.0, 0.0], cos_cutoff: 30f64.to_radians().cos(),
+///     exponent: 1.0, diffuse: [1.0; 3], specular: [0.0; 3], attenuation: [1.0, 0.0, 0.0],
+/// }];
+/// let m = LightingModel { material: &material, global_ambient: [0.0; 3], lights: &lights,
+///     specular_model: SpecularModel::Blinn, viewer: Viewer::Infinite };
+/// let up = [0.0, 1.0, 0.0];
+/// let (_, centre) = illuminate_with_margin(&m, [0.0; 3], up);
+/// assert!((centre - (1.0 - 30f64.to_radians().cos())).abs() < 1e-12); // cosγ = 1
+/// let edge = 30f64.to_radians().tan();
+/// let (_, at_edge) = illuminate_with_margin(&m, [edge + 1e-9, 0.0, 0.0], up);
+/// assert!(at_edge < 1e-9);
+/// // Seen from below, the spot does not light the point on either side.
+/// let (_, below) = illuminate_with_margin(&m, [edge, 0.0, 0.0], [0.0, -1.0, 0.0]);
+/// assert_eq!(below, f64::INFINITY);
+/// ```
+pub fn illuminate_with_margin(m: &LightingModel, p: [f64; 3], n: [f64; 3]) -> ([f64; 3], f64) {
     let mat = m.material;
     let mut out: [f64; 3] =
         std::array::from_fn(|c| mat.emission[c] + m.global_ambient[c] * mat.ambient[c]);
+    let mut margin = f64::INFINITY;
     let n_len = length(n);
     if n_len > 0.0 && n_len.is_finite() {
         let n = scale(n, 1.0 / n_len);
@@ -275,38 +319,86 @@ pub fn illuminate(m: &LightingModel, p: [f64; 3], n: [f64; 3]) -> [f64; 3] {
                 (len > 0.0).then(|| scale(minus_p, 1.0 / len))
             }
         };
+        let ks_on = mat.specular.iter().any(|&k| k > 0.0);
         for light in m.lights {
-            let Some(LightTerms { l, f, s, id, is }) = light_terms(light, p) else {
+            let Some(LightTerms {
+                l,
+                f,
+                s,
+                id,
+                is,
+                cone,
+            }) = light_terms(light, p)
+            else {
                 continue;
             };
             let n_dot_l = dot(n, l);
-            if n_dot_l <= 0.0 {
+            if let Some(Cone {
+                cos_gamma,
+                cos_cutoff,
+                edge,
+            }) = cone
+            {
+                if n_dot_l > 0.0 && edge > 0.0 {
+                    margin = margin.min((cos_gamma - cos_cutoff).abs());
+                }
+            }
+            if cone.is_some_and(|c| c.cos_gamma < c.cos_cutoff) {
+                // Outside the cone: no light, and no specular step.
                 continue;
             }
             let spec = match v {
                 None => 0.0,
-                Some(v) => match m.specular_model {
-                    SpecularModel::Phong => {
-                        let r = sub(scale(n, 2.0 * n_dot_l), l);
-                        pow0(dot(r, v).max(0.0), mat.shininess)
-                    }
-                    SpecularModel::Blinn => {
-                        let h = add(l, v);
-                        let h_len = length(h);
-                        if h_len > 0.0 {
-                            pow0(dot(n, scale(h, 1.0 / h_len)).max(0.0), mat.shininess)
-                        } else {
-                            0.0
-                        }
-                    }
-                },
+                Some(v) => specular_base(m, n, l, v, n_dot_l),
             };
+            if ks_on && is.iter().any(|&x| x > 0.0) && s * f * spec > 0.0 {
+                margin = margin.min(n_dot_l.abs());
+            }
+            if n_dot_l <= 0.0 {
+                continue;
+            }
             for (c, o) in out.iter_mut().enumerate() {
                 *o += s * f * (id[c] * mat.diffuse[c] * n_dot_l + is[c] * mat.specular[c] * spec);
             }
         }
     }
-    out.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) })
+    let colour = out.map(|x| if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) });
+    (colour, margin)
+}
+
+/// The specular base raised to the shininess: Phong `max(R·V, 0)^n` with
+/// `R = 2(N·L)N − L`, Blinn `max(N·H, 0)^n` with `H = normalise(L + V)`
+/// (0 where `L + V = 0`). Evaluated for either sign of `N·L`: the caller
+/// uses it as the height of the specular step at `N·L = 0` as well as the
+/// term where `N·L > 0`.
+fn specular_base(m: &LightingModel, n: [f64; 3], l: [f64; 3], v: [f64; 3], n_dot_l: f64) -> f64 {
+    let shininess = m.material.shininess;
+    match m.specular_model {
+        SpecularModel::Phong => {
+            let r = sub(scale(n, 2.0 * n_dot_l), l);
+            pow0(dot(r, v).max(0.0), shininess)
+        }
+        SpecularModel::Blinn => {
+            let h = add(l, v);
+            let h_len = length(h);
+            if h_len > 0.0 {
+                pow0(dot(n, scale(h, 1.0 / h_len)).max(0.0), shininess)
+            } else {
+                0.0
+            }
+        }
+    }
+}
+
+/// Where a point lies against a spot's cone.
+#[derive(Clone, Copy)]
+struct Cone {
+    /// `cosγ = (−L)·S`.
+    cos_gamma: f64,
+    cos_cutoff: f64,
+    /// The spot factor just inside the edge, `cos(cutoff)^p`: the step's
+    /// height (0 for a 90° cone with `p > 0`, where there is no step).
+    edge: f64,
 }
 
 /// The per-light quantities of the equation at one point.
@@ -321,10 +413,13 @@ struct LightTerms {
     id: [f64; 3],
     /// Specular intensity.
     is: [f64; 3],
+    /// For a spot, where the point lies against its cone.
+    cone: Option<Cone>,
 }
 
 /// The terms of one light at `p`, or `None` where it contributes nothing
-/// (light on the point, outside a spot cone).
+/// and has no step (light on the point). Outside a spot's cone the spot
+/// factor `s` is 0.
 fn light_terms(light: &EyeLight, p: [f64; 3]) -> Option<LightTerms> {
     match light {
         EyeLight::Directional {
@@ -337,6 +432,7 @@ fn light_terms(light: &EyeLight, p: [f64; 3]) -> Option<LightTerms> {
             s: 1.0,
             id: *diffuse,
             is: *specular,
+            cone: None,
         }),
         EyeLight::Point {
             position,
@@ -351,6 +447,7 @@ fn light_terms(light: &EyeLight, p: [f64; 3]) -> Option<LightTerms> {
                 s: 1.0,
                 id: *diffuse,
                 is: *specular,
+                cone: None,
             })
         }
         EyeLight::Spot {
@@ -364,16 +461,22 @@ fn light_terms(light: &EyeLight, p: [f64; 3]) -> Option<LightTerms> {
         } => {
             let (l, d) = towards(*position, p)?;
             let cos_gamma = -dot(l, *axis);
-            if cos_gamma < *cos_cutoff {
-                return None;
-            }
-            let s = pow0(cos_gamma.max(0.0), *exponent);
+            let s = if cos_gamma < *cos_cutoff {
+                0.0
+            } else {
+                pow0(cos_gamma.max(0.0), *exponent)
+            };
             Some(LightTerms {
                 l,
                 f: attenuation_factor(*attenuation, d),
                 s,
                 id: *diffuse,
                 is: *specular,
+                cone: Some(Cone {
+                    cos_gamma,
+                    cos_cutoff: *cos_cutoff,
+                    edge: pow0(cos_cutoff.max(0.0), *exponent),
+                }),
             })
         }
     }

@@ -29,7 +29,10 @@ pub mod lighting;
 mod math;
 pub mod raster;
 
-pub use lighting::{eye_lights, illuminate, EyeLight, EyeLights, LightingModel};
+pub use lighting::{
+    eye_lights, illuminate, illuminate_with_margin, EyeLight, EyeLights, LightingModel,
+};
 pub use raster::{
-    look_at, orthographic, perspective, quantize_rgb565, render, vertex_normals, RefFrame,
+    look_at, orthographic, perspective, quantize_depth, quantize_rgb565, render, vertex_normals,
+    RefFrame, STEP_MARGIN,
 };

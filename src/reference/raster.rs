@@ -29,16 +29,23 @@
 //! 6. Pixel `(x, y)` (sample `(16x+8, 16y+8)`) is inside iff each edge has
 //!    `E > 0`, or `E = 0` on a top-left edge (`dy = 0 ∧ dx > 0` or `dy < 0`).
 //! 7. Affine barycentrics `λ0 = E_{v1v2}/Area2`, `λ1 = E_{v2v0}/Area2`,
-//!    `λ2 = E_{v0v1}/Area2`; depth `z = Σλ_i z_i`, drawn iff `z <` stored
-//!    depth (cleared to 1.0) when the depth test is on.
+//!    `λ2 = E_{v0v1}/Area2`; depth `z = Σλ_i z_i`, quantised to
+//!    `d = ⌊z·65535 + ½⌋` ([`quantize_depth`]) and drawn iff `d <` the
+//!    stored `u16` (cleared to 65535) when the depth test is on.
 //! 8. Colour: flat (once per original triangle at the centroid of its eye
 //!    positions with its unit eye-space face normal), Gouraud (`Σλ_i c_i`) or
 //!    Phong (`illuminate(Σλ_i P_i, Σλ_i n_i)`); on a back face with two-sided
 //!    lighting the back colours / negated normals are used.
+//! 9. Flags for the error measure (SPEC.md 7), per pixel: a depth tie
+//!    where the drawn surface's `d` came within 1 of another surface's
+//!    ([`RefFrame::tie`]), and a model step where the drawn colour was
+//!    evaluated within [`STEP_MARGIN`] of a step of the model
+//!    ([`RefFrame::step`], [`illuminate_with_margin`]).
 //!
 //! [`illuminate`]: super::illuminate
+//! [`illuminate_with_margin`]: super::illuminate_with_margin
 
-use super::lighting::{eye_lights, illuminate, LightingModel};
+use super::lighting::{eye_lights, illuminate_with_margin, LightingModel};
 use super::math::{
     add, cross, length, mat_mul, mul3, normal_matrix, normalize, scale, sub, transform4,
     transform_point, V3,
@@ -49,15 +56,48 @@ use std::borrow::Cow;
 /// Snapped window coordinates are clamped to this magnitude (1/16 px units).
 const SNAP_LIMIT: f64 = (1u64 << 60) as f64;
 
+/// How close to a step of the model (a spot's cone edge, a specular
+/// cut-off) a pixel's colour may be evaluated before the pixel is flagged
+/// as a model step (SPEC.md 7): 2⁻¹², in `cosγ` or `N·L`.
+///
+/// ```
+/// use fixshade::reference::STEP_MARGIN;
+/// assert_eq!(STEP_MARGIN, 1.0 / 4096.0);
+/// ```
+pub const STEP_MARGIN: f64 = 1.0 / 4096.0;
+
+/// The depth a pixel is tested and stored with (SPEC.md 5): `z_w`
+/// quantised to 16 bits, `d = ⌊z_w · 65535 + ½⌋`, clamped to 0 ..= 65535
+/// (NaN gives 65535, which never passes a test against the cleared value).
+///
+/// ```
+/// use fixshade::reference::quantize_depth;
+/// assert_eq!(quantize_depth(0.0), 0);
+/// assert_eq!(quantize_depth(0.5), 32768); // 32767.5, the half rounded up
+/// assert_eq!(quantize_depth(1.0), 65535);
+/// assert_eq!((quantize_depth(-0.1), quantize_depth(2.0)), (0, 65535));
+/// assert_eq!(quantize_depth(f64::NAN), 65535);
+/// ```
+pub fn quantize_depth(z_w: f64) -> u16 {
+    let d = (z_w * 65535.0 + 0.5).floor();
+    if d.is_nan() {
+        u16::MAX
+    } else {
+        d.clamp(0.0, 65535.0) as u16
+    }
+}
+
 /// A rendered reference frame: one entry per pixel, row-major (top row
 /// first); `None` where nothing was drawn. Colours are clamped to [0, 1] and
-/// not quantised (see [`quantize_rgb565`]).
+/// not quantised (see [`quantize_rgb565`]). Beside each colour, the flags
+/// that SPEC.md 7 counts apart: a depth tie and a model step.
 ///
 /// ```
 /// use fixshade::reference::RefFrame;
-/// let f = RefFrame { width: 2, height: 1, color: vec![None, Some([1.0, 0.0, 0.0])] };
+/// let f = RefFrame::new(2, 1, vec![None, Some([1.0, 0.0, 0.0])]);
 /// assert_eq!(f.pixel(1, 0), Some([1.0, 0.0, 0.0]));
 /// assert_eq!(f.covered_count(), 1);
+/// assert_eq!((f.tie, f.step), (vec![false; 2], vec![false; 2]));
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct RefFrame {
@@ -67,15 +107,45 @@ pub struct RefFrame {
     pub height: u32,
     /// `width · height` entries, row-major.
     pub color: Vec<Option<[f64; 3]>>,
+    /// Per pixel, whether it is a depth tie: the surface drawn there has a
+    /// quantised depth within 1 of that of another surface covering the
+    /// pixel (one it beat by at most 1, or one that later lost to it by at
+    /// most 1), so which of them the kernel draws is ill-conditioned. A
+    /// surface that wins by 2 or more clears the flag. Always `false`
+    /// without the depth test.
+    pub tie: Vec<bool>,
+    /// Per pixel, whether the colour drawn there was evaluated within
+    /// [`STEP_MARGIN`] of a step of the model (flat: at the triangle's
+    /// centroid; Gouraud: at any of the triangle's vertices; Phong: at the
+    /// pixel), see [`illuminate_with_margin`].
+    pub step: Vec<bool>,
 }
 
 impl RefFrame {
+    /// A frame of the given colours with no pixel flagged.
+    ///
+    /// ```
+    /// use fixshade::reference::RefFrame;
+    /// let f = RefFrame::new(1, 2, vec![Some([0.5; 3]), None]);
+    /// assert_eq!((f.width, f.height, f.tie.len(), f.step.len()), (1, 2, 2, 2));
+    /// ```
+    pub fn new(width: u32, height: u32, color: Vec<Option<[f64; 3]>>) -> RefFrame {
+        let n = color.len();
+        RefFrame {
+            width,
+            height,
+            color,
+            tie: vec![false; n],
+            step: vec![false; n],
+        }
+    }
+
     /// The colour at `(x, y)`, `None` if not drawn or outside the frame.
     ///
     /// ```
     /// use fixshade::reference::RefFrame;
     /// let green = Some([0.0, 1.0, 0.0]);
-    /// let f = RefFrame { width: 2, height: 2, color: vec![None, None, green, None] };
+    /// let f = RefFrame::new(2, 2, vec![None, None, green, None]);
     /// assert_eq!(f.pixel(0, 1), Some([0.0, 1.0, 0.0])); // row-major: index 1 · 2 + 0
     /// assert_eq!(f.pixel(1, 0), None); // not drawn
     /// assert_eq!(f.pixel(2, 1), None); // outside
@@ -105,7 +175,7 @@ impl RefFrame {
     ///
     /// ```
     /// use fixshade::reference::RefFrame;
-    /// let f = RefFrame { width: 2, height: 1, color: vec![None, Some([1.0, 1.0, 1.0])] };
+    /// let f = RefFrame::new(2, 1, vec![None, Some([1.0, 1.0, 1.0])]);
     /// assert_eq!(f.to_rgb565([0.0; 3]), vec![0x0000, 0xFFFF]);
     /// ```
     pub fn to_rgb565(&self, background: [f64; 3]) -> Vec<u16> {
@@ -247,6 +317,10 @@ struct Vert {
     normal: V3,
     front: V3,
     back: V3,
+    /// Gouraud: how far the front and back colours were evaluated from a
+    /// step of the model (`illuminate_with_margin`).
+    front_margin: f64,
+    back_margin: f64,
 }
 
 impl Vert {
@@ -264,6 +338,10 @@ impl Vert {
             normal: l3(a.normal, b.normal),
             front: l3(a.front, b.front),
             back: l3(a.back, b.back),
+            // A cut vertex's colour is a mix of both ends': near a step if
+            // either is.
+            front_margin: a.front_margin.min(b.front_margin),
+            back_margin: a.back_margin.min(b.back_margin),
         }
     }
 
@@ -344,7 +422,10 @@ fn inside_edge(e: i128, a: (i64, i64), b: (i64, i64)) -> bool {
 /// What one drawn triangle piece needs besides its vertices.
 struct Target<'a> {
     color: &'a mut [Option<V3>],
-    depth: &'a mut [f64],
+    tie: &'a mut [bool],
+    step: &'a mut [bool],
+    /// Quantised depths, cleared to 65535.
+    depth: &'a mut [u16],
     width: u32,
     height: u32,
 }
@@ -356,8 +437,10 @@ struct Shade<'a, 'b> {
     cull: bool,
     depth_test: bool,
     two_sided: bool,
-    /// Flat colours (front, back) of the original triangle.
+    /// Flat colours (front, back) of the original triangle, and how far
+    /// each was evaluated from a step of the model.
     flat: (V3, V3),
+    flat_margin: (f64, f64),
 }
 
 fn draw_triangle(verts: [Vert; 3], target: &mut Target, shade: &Shade) {
@@ -407,15 +490,24 @@ fn draw_triangle(verts: [Vert; 3], target: &mut Target, shade: &Shade) {
             }
             let l = [e12 as f64 / area, e20 as f64 / area, e01 as f64 / area];
             let i = (py * i64::from(target.width) + px) as usize;
+            let mut tie = false;
             if shade.depth_test {
                 let z = l[0] * s[0].z + l[1] * s[1].z + l[2] * s[2].z;
-                // NaN never passes.
-                let closer = z < target.depth[i];
-                if !closer {
+                let d = quantize_depth(z);
+                let stored = target.depth[i];
+                // A stored value below the cleared 65535 is another
+                // surface's (a surface is stored only where its d is below
+                // what was there). Within 1 of it, the kernel's d, which
+                // can be 1 off this one, may keep either surface.
+                let near = stored < u16::MAX && d.abs_diff(stored) <= 1;
+                if d >= stored {
+                    target.tie[i] |= near;
                     continue;
                 }
-                target.depth[i] = z;
+                target.depth[i] = d;
+                tie = near;
             }
+            target.tie[i] = tie;
             let mix = |f: fn(&Vert) -> V3| {
                 let mut out = [0.0; 3];
                 for (k, vert) in v.iter().enumerate() {
@@ -423,37 +515,42 @@ fn draw_triangle(verts: [Vert; 3], target: &mut Target, shade: &Shade) {
                 }
                 out
             };
-            let color = match shade.shading {
+            let (color, margin) = match shade.shading {
                 Shading::Flat => {
                     if use_back {
-                        shade.flat.1
+                        (shade.flat.1, shade.flat_margin.1)
                     } else {
-                        shade.flat.0
+                        (shade.flat.0, shade.flat_margin.0)
                     }
                 }
                 Shading::Gouraud => {
+                    // Every vertex colour is in the mix: near a step if
+                    // any of them is.
+                    let least = |m: [f64; 3]| m[0].min(m[1]).min(m[2]);
                     if use_back {
-                        mix(|v| v.back)
+                        (mix(|v| v.back), least(v.map(|v| v.back_margin)))
                     } else {
-                        mix(|v| v.front)
+                        (mix(|v| v.front), least(v.map(|v| v.front_margin)))
                     }
                 }
                 Shading::Phong => {
                     let n = mix(|v| v.normal);
                     let n = if use_back { scale(n, -1.0) } else { n };
-                    illuminate(shade.lighting, mix(|v| v.eye), n)
+                    illuminate_with_margin(shade.lighting, mix(|v| v.eye), n)
                 }
             };
             target.color[i] = Some(color.map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) }));
+            target.step[i] = margin <= STEP_MARGIN;
         }
     }
 }
 
 /// Renders `scene` with the f64 reference pipeline (module documentation,
-/// steps 1 to 8). The scene is [validated](SceneDesc::validate) first.
+/// steps 1 to 9). The scene is [validated](SceneDesc::validate) first.
 ///
 /// Returns a frame with `Some(colour)` at every drawn pixel and `None`
-/// elsewhere (the background is not stored). A 0 × N frame is empty.
+/// elsewhere (the background is not stored), with each pixel's depth-tie
+/// and model-step flags (step 9). A 0 × N frame is empty.
 /// Triangles are drawn in index order, clipped pieces in fan order; without
 /// the depth test later pieces overwrite earlier ones.
 ///
@@ -479,11 +576,7 @@ pub fn render(scene: &SceneDesc) -> Result<RefFrame, SceneError> {
     scene.validate()?;
     let (width, height) = (scene.width, scene.height);
     let pixels = width as usize * height as usize;
-    let mut frame = RefFrame {
-        width,
-        height,
-        color: vec![None; pixels],
-    };
+    let mut frame = RefFrame::new(width, height, vec![None; pixels]);
     if pixels == 0 {
         return Ok(frame);
     }
@@ -523,16 +616,16 @@ pub fn render(scene: &SceneDesc) -> Result<RefFrame, SceneError> {
             let eye = transform_point(&mv, *p);
             let normal = normalize(mul3(&nm, *n));
             let clip = transform4(&proj, eye);
-            let (front, back) = if gouraud {
-                let front = illuminate(&lighting, eye, normal);
+            let ((front, front_margin), (back, back_margin)) = if gouraud {
+                let front = illuminate_with_margin(&lighting, eye, normal);
                 let back = if scene.two_sided {
-                    illuminate(&lighting, eye, scale(normal, -1.0))
+                    illuminate_with_margin(&lighting, eye, scale(normal, -1.0))
                 } else {
                     front
                 };
                 (front, back)
             } else {
-                ([0.0; 3], [0.0; 3])
+                (([0.0; 3], f64::INFINITY), ([0.0; 3], f64::INFINITY))
             };
             Vert {
                 clip,
@@ -540,32 +633,36 @@ pub fn render(scene: &SceneDesc) -> Result<RefFrame, SceneError> {
                 normal,
                 front,
                 back,
+                front_margin,
+                back_margin,
             }
         })
         .collect();
 
-    let mut depth = vec![1.0f64; pixels];
+    let mut depth = vec![u16::MAX; pixels];
     let mut target = Target {
         color: &mut frame.color,
+        tie: &mut frame.tie,
+        step: &mut frame.step,
         depth: &mut depth,
         width,
         height,
     };
     for tri in &mesh.indices {
         let v = tri.map(|i| verts[i as usize]);
-        let flat = if scene.shading == Shading::Flat {
+        let ((front, front_margin), (back, back_margin)) = if scene.shading == Shading::Flat {
             let [e0, e1, e2] = v.map(|x| x.eye);
             let centroid = add(add(e0, e1), e2).map(|c| c / 3.0);
             let n = normalize(cross(sub(e1, e0), sub(e2, e0)));
-            let front = illuminate(&lighting, centroid, n);
+            let front = illuminate_with_margin(&lighting, centroid, n);
             let back = if scene.two_sided {
-                illuminate(&lighting, centroid, scale(n, -1.0))
+                illuminate_with_margin(&lighting, centroid, scale(n, -1.0))
             } else {
                 front
             };
             (front, back)
         } else {
-            ([0.0; 3], [0.0; 3])
+            (([0.0; 3], f64::INFINITY), ([0.0; 3], f64::INFINITY))
         };
         let shade = Shade {
             lighting: &lighting,
@@ -573,7 +670,8 @@ pub fn render(scene: &SceneDesc) -> Result<RefFrame, SceneError> {
             cull: scene.cull,
             depth_test: scene.depth,
             two_sided: scene.two_sided,
-            flat,
+            flat: (front, back),
+            flat_margin: (front_margin, back_margin),
         };
         let (poly, n) = clip_near(&v);
         for k in 1..n.saturating_sub(1) {

@@ -284,12 +284,14 @@ fn run() -> Result<(), (u8, String)> {
             format!("kernel {:.2} ms/frame", median(&times).as_secs_f64() * 1e3),
             match &last_error {
                 Some(Ok(e)) => format!(
-                    "err max {}/{}/{} mean {:.4} exact {:.1}% cov {}",
+                    "err max {}/{}/{} mean {:.4} exact {:.1}% ties {} steps {} cov {}",
                     e.max_error[0],
                     e.max_error[1],
                     e.max_error[2],
                     e.mean_error,
                     e.exact_share * 100.0,
+                    e.depth_ties,
+                    e.model_steps,
                     e.only_kernel + e.only_reference
                 ),
                 Some(Err(e)) => format!("reference: {e}"),
