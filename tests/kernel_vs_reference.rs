@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_within_bound, kernel_vs_reference};
+use common::{assert_within_bound, kernel_vs_reference, kernel_vs_reference_away_from_folds};
 use fixshade::generate;
 use fixshade::scene_desc::{
     CameraDesc, LightDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
@@ -172,10 +172,18 @@ fn two_sided_open_mesh() {
         LightDesc::point([2.0, 3.0, 1.0]),
         LightDesc::directional([-1.0, 0.5, 0.3]),
     ];
+    // Where the torus turns over at its silhouette, two triangles overlap
+    // on screen along their shared edge; a pixel centre within snapping
+    // distance of that edge may fall in the other one of the two for the
+    // kernel, a coverage difference the colour bound does not cover (it
+    // moved onto a pixel centre when the eye moved by 0.01, before the
+    // mesh format as after). Those pixels are left out.
     for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
         s.shading = shading;
-        let (e, _) = kernel_vs_reference(&s);
-        assert_within_bound(&format!("two-sided torus {shading:?}"), &e);
+        let (e, left_out) = kernel_vs_reference_away_from_folds(&s);
+        let what = format!("two-sided torus {shading:?} ({left_out} fold pixels left out)");
+        assert_within_bound(&what, &e);
+        assert!(left_out * 100 < e.covered_both as usize, "{what}");
     }
 }
 
