@@ -95,7 +95,9 @@ fn run() -> Result<(), String> {
 
         let (frame, kernel_time) = common::median_time(RUNS, || kernel.render_frame());
         let frame = frame.map_err(|e| format!("{name}: {e}"))?;
-        let (reference, reference_time) = common::median_time(RUNS, || reference::render(desc));
+        // The reference renders the mesh the kernel draws (quantised).
+        let (reference, reference_time) =
+            common::median_time(RUNS, || reference::render(kernel.reference_scene()));
         let reference = reference.map_err(|e| format!("{name}: reference: {e}"))?;
         let e = compare(&frame.pixels, &frame.covered, &reference);
         println!(

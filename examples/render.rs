@@ -147,8 +147,10 @@ fn run() -> Result<(), Failure> {
     }
 
     if args.compare {
-        let (reference, reference_time) =
-            common::median_time(REFERENCE_RUNS, || reference::render(&desc));
+        // The reference renders the mesh the kernel draws (quantised).
+        let (reference, reference_time) = common::median_time(REFERENCE_RUNS, || {
+            reference::render(kernel.reference_scene())
+        });
         let reference = reference.map_err(|e| input(format!("{name}: reference: {e}")))?;
         let stats = compare(&frame.pixels, &frame.covered, &reference);
         println!(

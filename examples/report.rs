@@ -20,7 +20,8 @@
 //! step) are fixed, so they are not swept.
 //!
 //! Two errors are kept apart: the *fixed-point error* (the kernel against the
-//! reference in the same shading mode, undithered) and the *model error* (the
+//! reference in the same shading mode, undithered, the reference drawing the
+//! quantised mesh the kernel draws) and the *model error* (the
 //! reference in that mode, quantised, against the reference in Phong mode,
 //! the "truth"). The plot shows the *total* error, the kernel against the
 //! truth, which is what a user of a configuration gets.
@@ -405,6 +406,23 @@ fn run(args: &Args) -> Result<(), Error> {
             .collect::<Result<_, Error>>()?;
         let ref_of = |m: Shading| &refs.iter().find(|(s, _)| *s == m).expect("mode").1;
         let truth = ref_of(truth_mode(name));
+        // The fixed-point error is against the reference of the mesh the
+        // kernel draws (quantised, the same in every mode); the model and
+        // total errors against the scene's own mesh.
+        let drawn = KernelScene::new(base)?.reference_scene().clone();
+        let drawn_refs: Vec<(Shading, RefFrame)> = modes(name)
+            .iter()
+            .map(|&m| {
+                Ok((
+                    m,
+                    reference::render(&SceneDesc {
+                        shading: m,
+                        ..drawn.clone()
+                    })?,
+                ))
+            })
+            .collect::<Result<_, Error>>()?;
+        let drawn_ref_of = |m: Shading| &drawn_refs.iter().find(|(s, _)| *s == m).expect("mode").1;
         for c in all.iter().filter(|c| c.scene == *name) {
             let d = desc_for(base, c);
             let own_ref = ref_of(c.shading);
@@ -414,7 +432,7 @@ fn run(args: &Args) -> Result<(), Error> {
                 Engine::Kernel { .. } => {
                     let scene = KernelScene::new(&d)?;
                     let frame = scene.render_frame().map_err(|e| format!("{name}: {e:?}"))?;
-                    let fixed = compare(&frame.pixels, &frame.covered, own_ref);
+                    let fixed = compare(&frame.pixels, &frame.covered, drawn_ref_of(c.shading));
                     let total = compare(&frame.pixels, &frame.covered, truth);
                     let mut bufs = KernelBuffers::new(&d);
                     frames.push(Box::new(move || bufs.frame(&scene)));

@@ -437,17 +437,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// use fixshade::framebuffer::Framebuffer;
     /// use fixshade::illumination::InfiniteViewer;
     /// use fixshade::light::DirectionalLight;
-    /// use fixshade::mesh::Mesh;
+    /// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// use fixshade::render::{Gouraud, RenderError, RenderOptions, Renderer};
-    /// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+    /// use fixshade::{Mat4, Material, Rgb};
     ///
-    /// static P: [Vec3; 3] = [
-    ///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    ///     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    ///     Vec3::from_bits(0, 1 << 24, 0),
-    /// ];
-    /// static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
+    /// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -498,7 +496,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
-        let Some(mut frame) = self.frame(mesh, size)? else {
+        let modelview = self.mesh_modelview(mesh);
+        let Some(mut frame) = self.frame(mesh, &modelview, size)? else {
             return Ok(stats);
         };
         let cull = self.options().cull;

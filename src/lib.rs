@@ -33,6 +33,8 @@ pub mod error_measure;
 #[cfg(feature = "reference")]
 pub mod generate;
 #[cfg(feature = "reference")]
+pub mod mesh_convert;
+#[cfg(feature = "reference")]
 pub mod reference;
 #[cfg(feature = "reference")]
 pub mod scene_desc;

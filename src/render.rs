@@ -1,10 +1,12 @@
 //! The pipeline: from a mesh, a model transform and a camera to RGB565
 //! pixels in any `embedded-graphics` `DrawTarget`.
 //!
-//! Per vertex, once per frame: model-view transform (`I8F24`), projection
-//! to clip space, snapping to 1/16 pixel (the whole frame does every mesh
-//! vertex in one pass before its triangles; the band renderer, those its
-//! triangles use). The normal transform (`I2F14`, 16 × 16-bit products)
+//! Per vertex, once per frame: model-view transform (the mesh's `i16`
+//! positions through the model-view matrix with the mesh's box folded in,
+//! to `I8F24`), projection to clip space, snapping to 1/16 pixel (the
+//! whole frame does every mesh vertex in one pass before its triangles;
+//! the band renderer, those its triangles use). The normal transform (of
+//! the packed normal's octahedral point, 16 × 16-bit products)
 //! and lighting (Gouraud) are done later, and only for vertices of
 //! triangles that survive culling and touch the target. Triangles that
 //! cross the near plane are clipped in clip space (SPEC.md 5); the rest of
@@ -98,16 +100,13 @@ pub enum ShadingKind {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -136,16 +135,13 @@ pub trait ShadingMode {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -177,16 +173,13 @@ impl ShadingMode for Flat {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z, Unit3::Z, Unit3::Y];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z, PackedNormal::Z, PackedNormal::Y];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -216,16 +209,13 @@ impl ShadingMode for Gouraud {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z, Unit3::Z, Unit3::Y];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z, PackedNormal::Z, PackedNormal::Y];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -282,16 +272,13 @@ impl Default for RenderOptions {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -355,16 +342,13 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -455,16 +439,13 @@ const F_NORMAL: u8 = 8;
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -496,16 +477,13 @@ pub struct CachedVertex {
 /// # use fixshade::camera::Camera;
 /// # use fixshade::illumination::InfiniteViewer;
 /// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::Mesh;
+/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-/// # static P: [Vec3; 3] = [
-/// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-/// #     Vec3::from_bits(0, 1 << 24, 0),
-/// # ];
-/// # static N: [Unit3; 3] = [Unit3::Z; 3];
-/// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// # use fixshade::{Mat4, Material, Rgb};
+/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -543,17 +521,15 @@ const _: () = assert!(MAX_TARGET_SIDE as i64 == crate::rasterizer::CLIP_LIMIT);
 /// use fixshade::framebuffer::Framebuffer;
 /// use fixshade::illumination::InfiniteViewer;
 /// use fixshade::light::DirectionalLight;
-/// use fixshade::mesh::Mesh;
+/// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
 /// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
-/// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+/// use fixshade::{Mat4, Material, Rgb};
 ///
-/// static P: [Vec3; 3] = [
-///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-///     Vec3::from_bits(1 << 24, -1 << 24, 0),
-///     Vec3::from_bits(0, 1 << 24, 0),
-/// ];
-/// static N: [Unit3; 3] = [Unit3::Z; 3];
-/// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+/// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
+/// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+/// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+/// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+/// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
 /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -571,9 +547,6 @@ pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
     lighting: Lighting<S, V, L>,
     camera: Camera,
     modelview: Mat4,
-    /// Whether `modelview`'s point sums can never saturate
-    /// ([`Mat4::point_sums_fit`]): vertices then take plain sums.
-    plain_sums: bool,
     normal_m: [[i16; 3]; 3],
     options: RenderOptions,
 }
@@ -589,16 +562,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// use fixshade::framebuffer::Framebuffer;
     /// use fixshade::illumination::InfiniteViewer;
     /// use fixshade::light::DirectionalLight;
-    /// use fixshade::mesh::Mesh;
+    /// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
-    /// use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// static P: [Vec3; 3] = [
-    ///     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    ///     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    ///     Vec3::from_bits(0, 1 << 24, 0),
-    /// ];
-    /// static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// use fixshade::{Mat4, Material, Rgb};
+    /// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
+    /// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// let glow = Material::new().with_emission(Rgb::grey_f32(0.5).unwrap());
@@ -630,7 +601,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             lighting: Lighting::new(material, global_ambient, lights, &camera.view),
             camera: *camera,
             modelview,
-            plain_sums: modelview.point_sums_fit(),
             normal_m: normal_matrix(&modelview).unwrap_or([[0; 3]; 3]),
             options,
         }
@@ -642,16 +612,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// # use fixshade::camera::Camera;
     /// # use fixshade::illumination::InfiniteViewer;
     /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
     /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// # static P: [Vec3; 3] = [
-    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(0, 1 << 24, 0),
-    /// # ];
-    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -673,16 +640,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// # use fixshade::camera::Camera;
     /// # use fixshade::illumination::InfiniteViewer;
     /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// # static P: [Vec3; 3] = [
-    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(0, 1 << 24, 0),
-    /// # ];
-    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # use fixshade::{Mat4, Material, Rgb};
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -705,16 +669,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// # use fixshade::camera::Camera;
     /// # use fixshade::illumination::InfiniteViewer;
     /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// # static P: [Vec3; 3] = [
-    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(0, 1 << 24, 0),
-    /// # ];
-    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # use fixshade::{Mat4, Material, Rgb};
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -759,16 +720,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// # use fixshade::camera::Camera;
     /// # use fixshade::illumination::InfiniteViewer;
     /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::Mesh;
+    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
     /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// # static P: [Vec3; 3] = [
-    /// #     Vec3::from_bits(-1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(1 << 24, -1 << 24, 0),
-    /// #     Vec3::from_bits(0, 1 << 24, 0),
-    /// # ];
-    /// # static N: [Unit3; 3] = [Unit3::Z; 3];
-    /// # let mesh = Mesh::new(&P, &[[0, 1, 2]]).with_normals(&N);
+    /// # use fixshade::{Mat4, Material, Rgb};
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
+    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
@@ -834,7 +792,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             ..DrawStats::default()
         };
         // An empty target draws nothing (and has no aspect ratio).
-        let Some(frame) = self.frame(mesh, size)? else {
+        let modelview = self.mesh_modelview(mesh);
+        let Some(frame) = self.frame(mesh, &modelview, size)? else {
             return Ok(stats);
         };
         // Every vertex projected up front: a mesh's vertices are (nearly)
@@ -853,11 +812,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         Ok(stats)
     }
 
+    /// The model-view matrix with `mesh`'s box folded in: it takes the
+    /// mesh's `i16` positions to eye space ([`Bounds::fold`]), once a draw.
+    ///
+    /// [`Bounds::fold`]: crate::mesh::Bounds::fold
+    pub(crate) fn mesh_modelview(&self, mesh: &Mesh) -> Mat4 {
+        mesh.bounds.fold(&self.modelview)
+    }
+
     /// The per-draw constants for a viewport of `size` at the origin,
-    /// drawing all its rows; `None` for an empty viewport.
+    /// drawing all its rows, `modelview` from [`Renderer::mesh_modelview`];
+    /// `None` for an empty viewport.
     pub(crate) fn frame<'a, 'm, E>(
         &'a self,
         mesh: &'a Mesh<'m>,
+        modelview: &'a Mat4,
         size: Size,
     ) -> Result<Option<Frame<'a, 'm, S, V, L>>, RenderError<E>> {
         let (w, h) = (size.width, size.height);
@@ -871,6 +840,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         Ok(Some(Frame {
             r: self,
             mesh,
+            modelview,
             proj,
             w: w as i64,
             h: h as i64,
@@ -1074,6 +1044,10 @@ impl Corners for CacheCorners<'_> {
 pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     pub(crate) r: &'a Renderer<S, V, L>,
     pub(crate) mesh: &'a Mesh<'m>,
+    /// The model-view matrix with the mesh's box folded in
+    /// ([`Renderer::mesh_modelview`]), by reference: a pointer, not 64
+    /// bytes, in the struct the triangle loop reads.
+    modelview: &'a Mat4,
     pub(crate) proj: ProjectionCoeffs,
     w: i64,
     h: i64,
@@ -1170,25 +1144,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// [`Frame::eye`], always inlined: for the loops over every vertex.
+    /// The mesh's `i16` position goes straight into the matrix that has
+    /// the box folded in (no sum can overflow:
+    /// [`Mat4::transform_quantised`]).
     #[inline(always)]
     pub(crate) fn eye_inline(&self, i: usize) -> Vec3 {
-        let (m, p) = (&self.r.modelview, self.mesh.positions[i]);
-        // A matrix that cannot saturate the sums takes plain ones (M0+ S1
-        // −1.2 %; x86-64 S1 −0.6 %, S3 −1.2 % under callgrind, once
-        // `Frame::triangle` was inlined everywhere: before that, the second
-        // copy changed how LLVM inlined the band renderer on x86-64).
-        if self.r.plain_sums {
-            m.transform_point_unsaturated(p)
-        } else {
-            m.transform_point(p)
-        }
+        self.modelview.transform_quantised(self.mesh.positions[i])
     }
 
-    /// Eye-space normal of mesh vertex `i`.
+    /// Eye-space normal of mesh vertex `i`: its octahedral point
+    /// transformed, then normalised once.
     #[inline]
     pub(crate) fn eye_normal(&self, i: usize) -> Unit3 {
         match self.mesh.normals {
-            Some(ns) => self.normal_to_eye(ns[i]),
+            Some(ns) => self.normal_to_eye(ns[i].octahedron()),
             None => Unit3::ZERO,
         }
     }
@@ -1204,16 +1173,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         c.normal
     }
 
-    /// `N_eye = normalise(M_n · N)`: 16 × 16-bit products, sums below 2³¹.
+    /// `N_eye = normalise(M_n · N)` for `N` a point of the octahedron
+    /// ([`PackedNormal::octahedron`]): `|M_n| ≤ 2¹⁴` and `Σ|N| ≤ 3·2¹⁵`
+    /// (32767 for the encoder's bits), so each row's sum of 16 × 16-bit
+    /// products is at most `3·2²⁹ < 2³¹`.
+    ///
+    /// [`PackedNormal::octahedron`]: crate::mesh::PackedNormal::octahedron
     #[inline]
-    fn normal_to_eye(&self, n: Unit3) -> Unit3 {
-        let b = n.to_bits();
+    fn normal_to_eye(&self, b: [i32; 3]) -> Unit3 {
         let m = &self.r.normal_m;
-        let row = |r: usize| {
-            m[r][0] as i32 * b[0] as i32
-                + m[r][1] as i32 * b[1] as i32
-                + m[r][2] as i32 * b[2] as i32
-        };
+        let row = |r: usize| m[r][0] as i32 * b[0] + m[r][1] as i32 * b[1] + m[r][2] as i32 * b[2];
         normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
     }
 

@@ -2,8 +2,11 @@
 //! same scene the f64 reference renders, so that the two can be compared
 //! pixel by pixel.
 //!
-//! [`KernelScene::new`] converts the description once (positions to
-//! `I8F24`, normals to `I2F14`, indices to `u16`, lights to [`AnyLight`]);
+//! [`KernelScene::new`] converts the description once (the mesh to the
+//! kernel's flash format through [`mesh_convert`](crate::mesh_convert),
+//! lights to [`AnyLight`]); the reference is to render
+//! [`KernelScene::reference_scene`], the description with the converted
+//! mesh dequantised, so that both draw the same mesh;
 //! [`KernelScene::render`] renders it into a framebuffer, choosing the
 //! kernel's type parameters (specular model, viewer, shading mode, depth
 //! test) from the description's run-time values. A material whose specular
@@ -30,14 +33,15 @@ use crate::light::{
     SpotCone, SpotLight, WidePoint,
 };
 use crate::material::{BlinnPhong, Material, Phong, Specular};
-use crate::mesh::{vertex_normals, Mesh, MeshError};
+use crate::mesh::{Mesh, MeshError};
+use crate::mesh_convert::{ConvertError, MeshData};
 use crate::render::{
     CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer,
     ShadingMode,
 };
 use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
 use crate::specular_table::Exponent;
-use crate::vector::{FormatError, Mat4, Unit3, Vec3};
+use crate::vector::{FormatError, Mat4, Vec3};
 
 /// The most lights a scene may have here.
 ///
@@ -114,9 +118,7 @@ pub struct KernelScene {
     pub width: u32,
     /// Viewport height.
     pub height: u32,
-    positions: Vec<Vec3>,
-    normals: Vec<Unit3>,
-    indices: Vec<[u16; 3]>,
+    mesh: MeshData,
     camera: Camera,
     model: Mat4,
     emission: Rgb,
@@ -126,6 +128,7 @@ pub struct KernelScene {
     shininess: Exponent,
     global_ambient: Rgb,
     lights: heapless::Vec<AnyLight, MAX_LIGHTS>,
+    /// The description, its mesh replaced by the converted one, dequantised.
     desc: SceneDesc,
     /// Background colour.
     pub background: Rgb565,
@@ -221,37 +224,26 @@ impl KernelScene {
     /// assert_eq!(mesh.normals.map(|n| n.len()), Some(s.mesh.positions.len()));
     /// ```
     pub fn new(d: &SceneDesc) -> Result<KernelScene, KernelSceneError> {
-        if d.mesh.positions.len() > 65536 {
-            return Err(KernelSceneError::TooManyVertices);
-        }
-        let positions = d
-            .mesh
-            .positions
-            .iter()
-            .map(|p| Vec3::from_f64(*p))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| KernelSceneError::Format("mesh.positions", e))?;
-        let indices: Vec<[u16; 3]> = d.mesh.indices.clone();
-        let normals = match &d.mesh.normals {
-            Some(ns) => ns
-                .iter()
-                .map(|n| unit_from_f64(*n).unwrap_or(Unit3::ZERO))
-                .collect(),
-            None => {
-                let mut sums = vec![[0i32; 3]; positions.len()];
-                let mut out = vec![Unit3::ZERO; positions.len()];
-                vertex_normals(&positions, &indices, &mut sums, &mut out)
-                    .map_err(KernelSceneError::Mesh)?;
-                out
+        let mut mesh = MeshData::from_desc(&d.mesh).map_err(|e| match e {
+            ConvertError::Position { error, .. } => {
+                KernelSceneError::Format("mesh.positions", error)
             }
+            ConvertError::TooManyVertices(_) => KernelSceneError::TooManyVertices,
+            ConvertError::NormalCount { .. } => KernelSceneError::Mesh(MeshError::NormalCount),
+            ConvertError::Mesh(e) => KernelSceneError::Mesh(e),
+        })?;
+        // The reference derives its own normals (in f64) where the
+        // description has none, from the same quantised positions.
+        let desc = SceneDesc {
+            mesh: mesh.to_desc(),
+            ..d.clone()
         };
+        mesh.derive_normals().map_err(KernelSceneError::Mesh)?;
         let parts = Parts::new(d)?;
         Ok(KernelScene {
             width: d.width,
             height: d.height,
-            positions,
-            normals,
-            indices,
+            mesh,
             camera: parts.camera,
             model: parts.model,
             emission: parts.colours[0],
@@ -267,23 +259,42 @@ impl KernelScene {
                 (d.background[2].clamp(0.0, 1.0) * 65536.0 + 0.5) as u32,
             )
             .to_rgb565(),
-            desc: d.clone(),
+            desc,
         })
     }
 
-    /// The mesh in kernel formats.
+    /// The mesh in the kernel's format.
     ///
     /// ```
-    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene, Vec3};
+    /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
     /// let s = sphere_scene(16, 16, 12, 6);
     /// let k = KernelScene::new(&s).unwrap();
     /// let mesh = k.mesh();
     /// assert!(mesh.validate().is_ok());
-    /// assert_eq!(mesh.positions[7], Vec3::from_f64(s.mesh.positions[7]).unwrap());
+    /// let p = mesh.bounds.position_f64(mesh.positions[7]);
+    /// assert_eq!(p, k.reference_scene().mesh.positions[7]);
+    /// assert!((0..3).all(|i| (p[i] - s.mesh.positions[7][i]).abs() < 2.0 / 65535.0));
     /// assert_eq!(mesh.indices[7], s.mesh.indices[7]);
     /// ```
     pub fn mesh(&self) -> Mesh<'_> {
-        Mesh::new(&self.positions, &self.indices).with_normals(&self.normals)
+        self.mesh.mesh()
+    }
+
+    /// The scene as the kernel draws it, for the f64 reference: the
+    /// description with its mesh replaced by the converted one,
+    /// dequantised ([`MeshData::to_desc`]; normals it had are decoded,
+    /// missing ones stay missing, for the reference to derive).
+    ///
+    /// ```
+    /// use fixshade::{error_measure::compare, reference::render, scene_kernel::KernelScene};
+    /// use fixshade::standard_scenes::sphere_scene;
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let frame = k.render_frame().unwrap();
+    /// let e = compare(&frame.pixels, &frame.covered, &render(k.reference_scene()).unwrap());
+    /// assert!(e.max_error.iter().all(|&m| m <= 1), "{e}");
+    /// ```
+    pub fn reference_scene(&self) -> &SceneDesc {
+        &self.desc
     }
 
     /// Renders into `target` (after clearing it and `depth` when the scene
@@ -466,9 +477,9 @@ impl KernelScene {
     /// ```
     /// use fixshade::{error_measure::compare, reference::render, scene_kernel::KernelScene};
     /// use fixshade::standard_scenes::sphere_scene;
-    /// let scene = sphere_scene(32, 24, 12, 6);
-    /// let frame = KernelScene::new(&scene).unwrap().render_frame().unwrap();
-    /// let e = compare(&frame.pixels, &frame.covered, &render(&scene).unwrap());
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let frame = k.render_frame().unwrap();
+    /// let e = compare(&frame.pixels, &frame.covered, &render(k.reference_scene()).unwrap());
     /// assert!(e.covered_both > 100);
     /// assert!(e.max_error.iter().all(|&m| m <= 1), "{e}"); // the kernel's 1 LSB bound
     /// assert!(e.coverage_mismatch_share <= 0.001, "{e}");
@@ -479,7 +490,7 @@ impl KernelScene {
         let mut pixels = vec![0u16; n];
         let mut covered = vec![false; n];
         let mut depth = vec![0u16; n];
-        let mut cache = vec![CachedVertex::default(); self.positions.len()];
+        let mut cache = vec![CachedVertex::default(); self.mesh.positions.len()];
         let stats = {
             let fb = Framebuffer::new(&mut pixels, w, h).map_err(|_| RenderError::CacheTooSmall)?;
             let mut rec = CoverageTarget {

@@ -27,7 +27,7 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
-use crate::widening::mul_i32;
+use crate::widening::{mul_i32, mul_i32_i16};
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
@@ -656,35 +656,37 @@ impl Mat4 {
         Vec3::from_bits(row(0), row(1), row(2))
     }
 
-    /// Whether [`Mat4::transform_point`]'s sums can never saturate, for any
-    /// point: `Σ_c |m[r][c]|·2³¹ + |m[r][3]|·2²⁴ < 2⁶³` on each row (each
-    /// `|b_c| ≤ 2³¹`), so that [`Mat4::transform_point_unsaturated`] gives
-    /// the same result. True of any matrix whose rows' linear entries sum
-    /// to less than 256 in magnitude (2³² raw), with room for the
-    /// translation. Checked once per renderer: a saturating 64-bit
-    /// addition is about a dozen instructions on 32-bit targets and five
-    /// on x86-64, a plain one two and one.
-    pub(crate) fn point_sums_fit(&self) -> bool {
-        self.m[..3].iter().all(|row| {
-            let lin: u128 = row[..3].iter().map(|&v| v.unsigned_abs() as u128).sum();
-            (lin << 31) + ((row[3].unsigned_abs() as u128) << COORD_FRAC) < 1 << 63
-        })
-    }
-
-    /// [`Mat4::transform_point`] with plain sums, for a matrix of which
-    /// [`Mat4::point_sums_fit`] holds: then no sum can overflow (the bound
-    /// there), `acc >> 23` is below 2⁴⁰, and the result is bit for bit
-    /// `transform_point`'s.
+    /// Applies the affine part (rows 0..3) to a mesh's quantised position
+    /// `q`, read as `Q.15` fractions ([`crate::mesh`]; the matrix is the
+    /// model-view matrix with the mesh's box folded in,
+    /// [`Bounds::fold`](crate::mesh::Bounds::fold)): `Σ m[r][c]·q[c]/2¹⁵ +
+    /// m[r][3]`, rounded to nearest and saturated to `I8F24`, the same as
+    /// [`Mat4::transform_point`] of the point `q / 2¹⁵` (`q·2⁹` raw).
+    ///
+    /// No sum can overflow and none saturates: each product is at most
+    /// `2³¹·2¹⁵ = 2⁴⁶`, the translation in the products' units (`·2¹⁵`) at
+    /// most 2⁴⁶, their sum below 2⁴⁸; rounded to units of 2⁻²⁴ it is below
+    /// 2³⁴ and clamps to `i32`. On a Cortex-M0 each product is two 16 × 16 →
+    /// 32-bit multiplies (one `i16` operand) where an `I8F24` coordinate's
+    /// took four.
     #[inline]
-    pub(crate) fn transform_point_unsaturated(&self, p: Vec3) -> Vec3 {
-        let b = p.to_bits();
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let m = Mat4::translation(Vec3::from_f32(0.0, 0.0, -5.0).unwrap());
+    /// assert_eq!(m.transform_quantised([16384, -32768, 0]).to_f32(), [0.5, -1.0, -5.0]);
+    /// let p = Vec3::from_bits(16384 << 9, -32768 << 9, 0);
+    /// assert_eq!(m.transform_quantised([16384, -32768, 0]), m.transform_point(p));
+    /// ```
+    pub fn transform_quantised(&self, q: [i16; 3]) -> Vec3 {
+        const Q15: u32 = 15;
         let row = |r: usize| {
             let m = &self.m[r];
-            let acc = mul_i32(m[0], b[0])
-                + mul_i32(m[1], b[1])
-                + mul_i32(m[2], b[2])
-                + ((m[3] as i64) << COORD_FRAC);
-            let r = ((acc >> (COORD_FRAC - 1)) + 1) >> 1;
+            let acc = mul_i32_i16(m[0], q[0])
+                + mul_i32_i16(m[1], q[1])
+                + mul_i32_i16(m[2], q[2])
+                + ((m[3] as i64) << Q15);
+            let r = ((acc >> (Q15 - 1)) + 1) >> 1;
             r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
         };
         Vec3::from_bits(row(0), row(1), row(2))
@@ -861,9 +863,9 @@ mod tests {
         assert!(saturated > 1000, "{saturated}");
     }
 
-    /// Every point with coordinates from a set of extremes, then 2 000
-    /// random ones.
-    fn points(next: &mut impl FnMut() -> u64) -> impl Iterator<Item = Vec3> + '_ {
+    #[test]
+    fn quantised_points_are_the_exact_sum_rounded() {
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
         let edge = [
             i32::MIN,
             i32::MIN + 1,
@@ -874,74 +876,43 @@ mod tests {
             1 << 24,
             i32::MAX,
         ];
-        let n = edge.len();
-        let corners = (0..n.pow(3))
-            .map(move |k| Vec3::from_bits(edge[k % n], edge[k / n % n], edge[k / n / n]));
-        let random = (0..2000).map(move |_| {
-            let v = next();
-            Vec3::from_bits(
-                v as i32,
-                (v >> 21) as i32,
-                (v >> 42) as i32 ^ (v << 7) as i32,
-            )
-        });
-        corners.chain(random)
-    }
-
-    #[test]
-    fn unsaturated_points_match_when_the_sums_fit() {
-        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
-        // Rows whose bound lies below, at and above 2^63, and random ones.
-        let limit = (1u64 << 32) - 1; // Σ|m| with |t| = 0: (2^32 − 1)·2^31 < 2^63
-        let mut checked = 0;
-        for k in 0..400 {
+        let qs = [i16::MIN, i16::MIN + 1, -1, 0, 1, i16::MAX];
+        let mut clamped = 0;
+        for k in 0..20_000 {
+            let (v, w) = (next(), next());
             let mut m = Mat4::IDENTITY;
-            for row in m.m[..3].iter_mut() {
-                let v = next();
-                let lin = match k % 4 {
-                    0 => limit - (v % 4),
-                    1 => limit + 1 + (v % 4),
-                    _ => v % (limit * 2),
-                };
-                // Split `lin` over three entries with random signs.
-                let a = (lin / 3).min(i32::MAX as u64) as i64;
-                let b = ((lin - a as u64) / 2).min(i32::MAX as u64) as i64;
-                let c = (lin - a as u64 - b as u64).min(i32::MAX as u64) as i64;
-                let sign = |bit: u32, x: i64| if v >> bit & 1 == 1 { -x } else { x };
-                *row = [
-                    sign(60, a) as i32,
-                    sign(61, b) as i32,
-                    sign(62, c) as i32,
-                    if k % 4 == 0 {
-                        0
+            for (r, row) in m.m[..3].iter_mut().enumerate() {
+                for (c, x) in row.iter_mut().enumerate() {
+                    let u = v.rotate_left((16 * r + 5 * c) as u32);
+                    *x = if k % 2 == 0 {
+                        edge[(u % edge.len() as u64) as usize]
                     } else {
-                        (v >> 8) as i32 >> (v % 24)
-                    },
-                ];
-            }
-            let fits = m.point_sums_fit();
-            let bound_ok = m.m[..3].iter().all(|r| {
-                let lin: i128 = r[..3].iter().map(|&x| (x as i128).abs()).sum();
-                lin * (1i128 << 31) + (r[3] as i128).abs() * (1 << 24) < 1i128 << 63
-            });
-            assert_eq!(fits, bound_ok, "{m:?}");
-            if fits {
-                checked += 1;
-                for p in points(&mut next) {
-                    assert_eq!(
-                        m.transform_point_unsaturated(p),
-                        m.transform_point(p),
-                        "{m:?} {p:?}"
-                    );
+                        (u >> 16) as i32
+                    };
                 }
             }
+            let q = if k % 3 == 0 {
+                [0, 1, 2].map(|i| qs[((w >> (8 * i)) % qs.len() as u64) as usize])
+            } else {
+                [w as i16, (w >> 16) as i16, (w >> 32) as i16]
+            };
+            let got = m.transform_quantised(q);
+            let exact = [0, 1, 2].map(|r| {
+                let row = &m.m[r];
+                let acc: i128 = (0..3).map(|c| row[c] as i128 * q[c] as i128).sum::<i128>()
+                    + ((row[3] as i128) << 15);
+                let x = ((acc >> 14) + 1) >> 1;
+                x.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+            });
+            assert_eq!(got.to_bits(), exact, "{m:?} {q:?}");
+            let p = Vec3::from_bits((q[0] as i32) << 9, (q[1] as i32) << 9, (q[2] as i32) << 9);
+            assert_eq!(got, m.transform_point(p), "{m:?} {q:?}");
+            clamped += exact
+                .iter()
+                .filter(|&&x| x == i32::MAX || x == i32::MIN)
+                .count();
         }
-        assert!(checked > 100, "only {checked} matrices fit");
-        // A row at the limit fits; one more unit does not.
-        let mut m = Mat4::IDENTITY;
-        m.m[0] = [i32::MAX, i32::MAX, 1, 0];
-        assert!(m.point_sums_fit());
-        m.m[0][2] = 2;
-        assert!(!m.point_sums_fit());
+        // The sweep reaches the clamps.
+        assert!(clamped > 1000, "{clamped}");
     }
 }

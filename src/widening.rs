@@ -105,6 +105,27 @@ pub(crate) fn mul_by_small_limbs(a: i64, b: i32) -> i64 {
     (((ah * b) as i64) << 16) + (al * b) as i64
 }
 
+/// `a · b`, exactly (`|a · b| ≤ 2⁴⁶`): on the targets without a 32 × 32 →
+/// 64-bit multiply, two 16 × 16 → 32-bit products, with `a = aₕ·2¹⁶ + aₗ`
+/// (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`): `|aₕ·b| ≤ 2³⁰` and `|aₗ·b| < 2³¹` fit
+/// `i32` (the plain product elsewhere).
+#[inline(always)]
+pub(crate) fn mul_i32_i16(a: i32, b: i16) -> i64 {
+    if cfg!(fixshade_soft_mul64) {
+        mul_i32_i16_limbs(a, b)
+    } else {
+        a as i64 * b as i64
+    }
+}
+
+/// [`mul_i32_i16`] from 16-bit halves of `a` (`aₗ` unsigned).
+#[inline(always)]
+pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let b = b as i32;
+    (((ah * b) as i64) << 16) + (al * b) as i64
+}
+
 /// `a · b` for `b < 2¹⁶`, exactly: with `a = aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`,
 /// `0 ≤ aₗ < 2¹⁶`), `aₕ·b` fits `i32` and `aₗ·b` fits `u32`: two 16 × 16 →
 /// 32-bit products (`muls`) on every core.
@@ -151,7 +172,8 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{
-        mul_by_small_limbs, mul_hi32, mul_i32_limbs, mul_i32_u16, mul_i64_i32_limbs, mul_u32_limbs,
+        mul_by_small_limbs, mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u16,
+        mul_i64_i32_limbs, mul_u32_limbs,
     };
     use crate::rasterizer::tests::xorshift;
 
@@ -202,6 +224,9 @@ mod tests {
                     for (x, y) in [(x, y), (x, -y), (-x, y), (-x, -y)] {
                         assert_eq!(mul_by_small_limbs(x, y), x * y as i64, "{x} {y}");
                     }
+                }
+                for b16 in [b as i16, i16::MIN, i16::MAX] {
+                    assert_eq!(mul_i32_i16_limbs(a32, b16), a32 as i64 * b16 as i64);
                 }
                 let b16 = b as u32 & 0xFFFF;
                 assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);

@@ -24,7 +24,7 @@ use fixshade::light::{
     SpotCone, SpotLight, WidePoint,
 };
 use fixshade::material::NoSpecular;
-use fixshade::mesh::{face_normal, vertex_normals, Mesh, MeshError};
+use fixshade::mesh::{face_normal, vertex_normals, Bounds, Mesh, MeshError, PackedNormal};
 use fixshade::render::{
     CachedVertex, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions, Renderer,
     MAX_TARGET_SIDE,
@@ -36,6 +36,11 @@ use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
 use fuzz_scene::CountingTarget;
 
 const NAN: f32 = f32::NAN;
+
+/// The triangle (−1, −1, 0), (1, −1, 0), (0, 1, 0), exactly: in the box
+/// [−2, 2)³, where `q = ±16384` is ±1.
+const TRIANGLE: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+const BOX2: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
 const NON_FINITE: [f32; 3] = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
 
 #[test]
@@ -100,17 +105,32 @@ fn normals_and_directions() {
     }
     // A degenerate face has no normal; vertex normals of a mesh made only
     // of degenerate faces are zero (lit by E + A·Ka only).
-    let p = [Vec3::from_bits(5, 5, 5); 3];
-    assert_eq!(face_normal(p[0], p[1], p[2]), None);
-    let (mut sums, mut out) = ([[0i32; 3]; 3], [Unit3::X; 3]);
-    vertex_normals(&p, &[[0, 1, 2]], &mut sums, &mut out).unwrap();
-    assert_eq!(out, [Unit3::ZERO; 3]);
+    let v = Vec3::from_bits(5, 5, 5);
+    assert_eq!(face_normal(v, v, v), None);
+    let p = [[5i16; 3]; 3];
+    let mesh = |i| Mesh::new(&p, Bounds::UNIT, i);
+    let (mut sums, mut out) = ([[0i32; 3]; 3], [PackedNormal::X; 3]);
+    vertex_normals(&mesh(&[[0, 1, 2]]), &mut sums, &mut out).unwrap();
+    assert_eq!(out, [PackedNormal::ZERO; 3]);
+    // So does a box of zero extent, and one of any bits: no panic, a
+    // degenerate box's faces are degenerate.
+    let flat = Mesh::new(&TRIANGLE, Bounds::from_bits([7; 3], [0; 3]), &[[0, 1, 2]]);
+    vertex_normals(&flat, &mut sums, &mut out).unwrap();
+    assert_eq!(out, [PackedNormal::ZERO; 3]);
+    let wild = Bounds::from_bits([i32::MIN, i32::MAX, -1], [u32::MAX, 1, u32::MAX]);
+    vertex_normals(
+        &Mesh::new(&TRIANGLE, wild, &[[0, 1, 2]]),
+        &mut sums,
+        &mut out,
+    )
+    .unwrap();
+    assert!(out.iter().all(|n| *n != PackedNormal::ZERO));
     assert_eq!(
-        vertex_normals(&p, &[[0, 1, 2]], &mut sums[..2], &mut out),
+        vertex_normals(&mesh(&[[0, 1, 2]]), &mut sums[..2], &mut out),
         Err(MeshError::BufferTooSmall)
     );
     assert_eq!(
-        vertex_normals(&p, &[[0, 1, 3]], &mut sums, &mut out),
+        vertex_normals(&mesh(&[[0, 1, 3]]), &mut sums, &mut out),
         Err(MeshError::IndexOutOfRange {
             triangle: 0,
             index: 3
@@ -364,11 +384,13 @@ fn scene_descriptions() {
     let (_, inf) = &bad[5];
     assert!(KernelScene::new(inf).is_err());
     // Zero and NaN normals (validate rejects the NaN one) convert to the
-    // zero normal.
+    // zero normal, which the reference is given as the zero vector.
     let k = KernelScene::new(&base).unwrap();
     let mesh = k.mesh();
     let n = mesh.normals.unwrap();
-    assert_eq!(&n[..2], &[Unit3::ZERO, Unit3::ZERO]);
+    assert_eq!(&n[..2], &[PackedNormal::ZERO, PackedNormal::ZERO]);
+    let reference = k.reference_scene().mesh.normals.as_ref().unwrap();
+    assert_eq!(reference[..2], [[0.0; 3], [0.0; 3]]);
 }
 
 /// A triangle drawn with zero normals gets `E + A·Ka` only, which is what
@@ -376,14 +398,9 @@ fn scene_descriptions() {
 #[test]
 fn zero_normals_light_ambient_only() {
     let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    let pos = [
-        Vec3::from_f32(-1.0, -1.0, 0.0).unwrap(),
-        Vec3::from_f32(1.0, -1.0, 0.0).unwrap(),
-        Vec3::from_f32(0.0, 1.0, 0.0).unwrap(),
-    ];
     let idx = [[0u16, 1, 2]];
-    let zero = [Unit3::ZERO; 3];
-    let mesh = Mesh::new(&pos, &idx).with_normals(&zero);
+    let zero = [PackedNormal::ZERO; 3];
+    let mesh = Mesh::new(&TRIANGLE, BOX2, &idx).with_normals(&zero);
     let m = Material::new().with_emission(Rgb::from_f32(0.1, 0.0, 0.0).unwrap());
     let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     let ambient = Rgb::grey_f32(0.5).unwrap();
@@ -412,12 +429,8 @@ fn zero_normals_light_ambient_only() {
 #[test]
 fn draw_errors() {
     let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    let pos = [
-        Vec3::from_f32(-1.0, -1.0, 0.0).unwrap(),
-        Vec3::from_f32(1.0, -1.0, 0.0).unwrap(),
-        Vec3::from_f32(0.0, 1.0, 0.0).unwrap(),
-    ];
-    let normals = [Unit3::Z; 3];
+    let pos = TRIANGLE;
+    let normals = [PackedNormal::Z; 3];
     let good_idx = [[0u16, 1, 2]];
     let bad_idx = [[0u16, 1, 2], [2, 1, 3]];
     let max_idx = [[u16::MAX, 0, 1]];
@@ -434,7 +447,7 @@ fn draw_errors() {
     let mut cache = [CachedVertex::default(); 3];
 
     let mut t = CountingTarget::new(32, 32);
-    let bad = Mesh::new(&pos, &bad_idx).with_normals(&normals);
+    let bad = Mesh::new(&pos, BOX2, &bad_idx).with_normals(&normals);
     assert_eq!(
         r.draw::<Gouraud, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
         Err(RenderError::Mesh(MeshError::IndexOutOfRange {
@@ -442,7 +455,7 @@ fn draw_errors() {
             index: 3
         }))
     );
-    let bad = Mesh::new(&pos, &max_idx);
+    let bad = Mesh::new(&pos, BOX2, &max_idx);
     assert_eq!(
         r.draw::<Flat, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
         Err(RenderError::Mesh(MeshError::IndexOutOfRange {
@@ -450,19 +463,19 @@ fn draw_errors() {
             index: u16::MAX
         }))
     );
-    let bad = Mesh::new(&pos, &good_idx).with_normals(&normals[..2]);
+    let bad = Mesh::new(&pos, BOX2, &good_idx).with_normals(&normals[..2]);
     assert_eq!(
         r.draw::<PhongShading, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
         Err(RenderError::Mesh(MeshError::NormalCount))
     );
     // No positions, an index: out of range too.
-    let empty = Mesh::new(&[], &good_idx);
+    let empty = Mesh::new(&[], BOX2, &good_idx);
     assert!(matches!(
         r.draw::<Flat, _, _>(&empty, &mut t, &mut NoDepth, &mut cache),
         Err(RenderError::Mesh(_))
     ));
 
-    let mesh = Mesh::new(&pos, &good_idx).with_normals(&normals);
+    let mesh = Mesh::new(&pos, BOX2, &good_idx).with_normals(&normals);
     assert_eq!(
         r.draw::<Gouraud, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache[..2]),
         Err(RenderError::CacheTooSmall)
@@ -903,10 +916,14 @@ impl DrawTarget for Discard {
     }
 }
 
-fn full_screen_quad() -> ([Vec3; 4], [[u16; 3]; 2]) {
-    let p = [(-2.0, -2.0), (2.0, -2.0), (2.0, 2.0), (-2.0, 2.0)]
-        .map(|(x, y)| Vec3::from_f32(x, y, 0.0).unwrap());
-    (p, [[0, 1, 2], [0, 2, 3]])
+/// The quad (±2, ±2, 0) in the box [−4, 4)³ and its two triangles.
+fn full_screen_quad() -> ([[i16; 3]; 4], Bounds, [[u16; 3]; 2]) {
+    let p = [(-1, -1), (1, -1), (1, 1), (-1, 1)].map(|(x, y)| [x * 16384, y * 16384, 0]);
+    (
+        p,
+        Bounds::from_bits([0; 3], [4 << 24; 3]),
+        [[0, 1, 2], [0, 2, 3]],
+    )
 }
 
 fn facing_renderer() -> Renderer<NoSpecular, InfiniteViewer, DirectionalLight> {
@@ -928,8 +945,8 @@ fn facing_renderer() -> Renderer<NoSpecular, InfiniteViewer, DirectionalLight> {
 /// one that ends exactly at `i32::MAX` is drawn, every run inside its box.
 #[test]
 fn targets_ending_past_i32_max() {
-    let (p, i) = full_screen_quad();
-    let mesh = Mesh::new(&p, &i);
+    let (p, b, i) = full_screen_quad();
+    let mesh = Mesh::new(&p, b, &i);
     let r = facing_renderer();
     let mut cache = [CachedVertex::default(); 4];
     let mut colour = [0u16; 64 * 8];
@@ -972,8 +989,8 @@ fn targets_ending_past_i32_max() {
 /// (found by an audit: the `u32` sum overflowed).
 #[test]
 fn draw_counts_saturate() {
-    let (p, i) = full_screen_quad();
-    let mesh = Mesh::new(&p, &i);
+    let (p, b, i) = full_screen_quad();
+    let mesh = Mesh::new(&p, b, &i);
     let side = MAX_TARGET_SIDE;
     let mut t = Discard {
         bb: Rectangle::new(Point::zero(), Size::new(side, side)),
@@ -1038,8 +1055,8 @@ impl DrawTarget for Growing {
 /// outside the box the draw began with.
 #[test]
 fn target_box_read_once() {
-    let (p, i) = full_screen_quad();
-    let mesh = Mesh::new(&p, &i);
+    let (p, b, i) = full_screen_quad();
+    let mesh = Mesh::new(&p, b, &i);
     let r = facing_renderer();
     let mut cache = [CachedVertex::default(); 4];
     let mut band_cache = [fixshade::band::BandVertex::default(); 4];

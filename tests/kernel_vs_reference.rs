@@ -3,11 +3,14 @@
 
 mod common;
 
-use common::{assert_within_bound, flagged_error, kernel_vs_reference};
+use common::{
+    assert_within_bound, flagged_error, kernel_vs_reference, kernel_vs_reference_away_from_folds,
+};
 use fixshade::generate;
 use fixshade::scene_desc::{
     CameraDesc, LightDesc, Projection, SceneDesc, Shading, SpecularModel, Viewer,
 };
+use fixshade::scene_kernel::KernelScene;
 use fixshade::standard_scenes::{s1, s2, s3, s4, sphere_scene};
 
 #[test]
@@ -93,7 +96,6 @@ fn kernel_depth_is_the_spec_quantisation() {
     use fixshade::reference::quantize_depth;
     use fixshade::render::CachedVertex;
     use fixshade::scene_desc::MeshDesc;
-    use fixshade::scene_kernel::KernelScene;
     let size = 64u32;
     let h = f64::from(size) / 2.0;
     // z = αX + βY, a plane through both triangles; the view looks down −Z
@@ -176,7 +178,8 @@ fn cube_flat_two_sided_unculled() {
     ];
     let (e, k) = kernel_vs_reference(&s);
     assert_within_bound("cube flat two-sided unculled", &e);
-    let r = fixshade::reference::render(&s).expect("reference");
+    let kernel = KernelScene::new(&s).expect("kernel scene");
+    let r = fixshade::reference::render(kernel.reference_scene()).expect("reference");
     let (over, worst) = flagged_error(&k, &r, &r.tie);
     println!("cube: {over} tie pixels more than 1 LSB off, up to {worst} LSB");
     assert!(
@@ -213,7 +216,8 @@ fn spot_cone_edges_counted_as_model_steps() {
     assert!(s.lights.iter().all(|l| matches!(l, LightDesc::Spot { .. })));
     let (e, k) = kernel_vs_reference(&s);
     assert_within_bound("spotlight scene", &e);
-    let r = fixshade::reference::render(&s).expect("reference");
+    let kernel = KernelScene::new(&s).expect("kernel scene");
+    let r = fixshade::reference::render(kernel.reference_scene()).expect("reference");
     let (over, worst) = flagged_error(&k, &r, &r.step);
     println!("spotlight scene: {over} step pixels more than 1 LSB off, up to {worst} LSB");
     assert!(
@@ -279,7 +283,6 @@ fn quad_fill_s2_and_fine_sphere_s3() {
 fn framebuffer_fast_path_matches_draw_target_path() {
     use fixshade::framebuffer::Framebuffer;
     use fixshade::render::CachedVertex;
-    use fixshade::scene_kernel::KernelScene;
     for (name, mut d) in fixshade::standard_scenes::all() {
         for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
             for dither in [false, true] {
@@ -335,10 +338,18 @@ fn two_sided_open_mesh() {
         LightDesc::point([2.0, 3.0, 1.0]),
         LightDesc::directional([-1.0, 0.5, 0.3]),
     ];
+    // Where the torus turns over at its silhouette, two triangles overlap
+    // on screen along their shared edge; a pixel centre within snapping
+    // distance of that edge may fall in the other one of the two for the
+    // kernel, a coverage difference the colour bound does not cover (it
+    // moved onto a pixel centre when the eye moved by 0.01, before the
+    // mesh format as after). Those pixels are left out.
     for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
         s.shading = shading;
-        let (e, _) = kernel_vs_reference(&s);
-        assert_within_bound(&format!("two-sided torus {shading:?}"), &e);
+        let (e, left_out) = kernel_vs_reference_away_from_folds(&s);
+        let what = format!("two-sided torus {shading:?} ({left_out} fold pixels left out)");
+        assert_within_bound(&what, &e);
+        assert!(left_out * 100 < e.covered_both as usize, "{what}");
     }
 }
 

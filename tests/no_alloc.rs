@@ -21,7 +21,8 @@ use fixshade::light::{
     unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, PointLight, SpotLight,
 };
 use fixshade::material::{BlinnPhong, Phong};
-use fixshade::mesh::{vertex_normals, Mesh};
+use fixshade::mesh::{vertex_normals, Bounds, Mesh, PackedNormal};
+use fixshade::mesh_convert::MeshData;
 use fixshade::render::{
     CachedVertex, DrawStats, Flat, Gouraud, NoDepth, PhongShading, RenderOptions, Renderer,
 };
@@ -92,37 +93,29 @@ fn the_counter_counts() {
     assert_eq!(n, 0);
 }
 
-/// A mesh in kernel formats (owned, built outside the counted regions).
+/// A mesh in the kernel's format (owned, converted outside the counted
+/// regions; zero normals where the description has none).
 struct KernelMesh {
-    positions: Vec<Vec3>,
-    normals: Vec<Unit3>,
+    positions: Vec<[i16; 3]>,
+    bounds: Bounds,
+    normals: Vec<PackedNormal>,
     indices: Vec<[u16; 3]>,
 }
 
 impl KernelMesh {
     fn from_desc(d: &MeshDesc) -> KernelMesh {
-        let positions: Vec<Vec3> = d
-            .positions
-            .iter()
-            .map(|p| Vec3::from_f64(*p).expect("position"))
-            .collect();
-        let indices: Vec<[u16; 3]> = d.indices.clone();
-        let normals = match &d.normals {
-            Some(ns) => ns
-                .iter()
-                .map(|n| unit_from_f64(*n).unwrap_or(Unit3::ZERO))
-                .collect(),
-            None => vec![Unit3::ZERO; positions.len()],
-        };
+        let data = MeshData::from_desc(d).expect("mesh converts");
+        let n = data.positions.len();
         KernelMesh {
-            positions,
-            normals,
-            indices,
+            normals: data.normals.unwrap_or(vec![PackedNormal::ZERO; n]),
+            positions: data.positions,
+            bounds: data.bounds,
+            indices: data.indices,
         }
     }
 
     fn mesh(&self) -> Mesh<'_> {
-        Mesh::new(&self.positions, &self.indices).with_normals(&self.normals)
+        Mesh::new(&self.positions, self.bounds, &self.indices).with_normals(&self.normals)
     }
 }
 
@@ -244,11 +237,13 @@ fn lighting_shade_does_not_allocate() {
 fn vertex_normals_do_not_allocate() {
     let m = KernelMesh::from_desc(&bunny_mesh());
     let mut sums = vec![[0i32; 3]; m.positions.len()];
-    let mut out = vec![Unit3::ZERO; m.positions.len()];
+    let mut out = vec![PackedNormal::ZERO; m.positions.len()];
+    let bare = Mesh::new(&m.positions, m.bounds, &m.indices);
     assert_no_alloc("vertex_normals", || {
-        vertex_normals(&m.positions, &m.indices, &mut sums, &mut out).expect("normals")
+        vertex_normals(&bare, &mut sums, &mut out).expect("normals")
     });
-    assert!(out.iter().filter(|n| !n.is_zero()).count() > m.positions.len() / 2);
+    let lit = out.iter().filter(|&&n| n != PackedNormal::ZERO).count();
+    assert!(lit > m.positions.len() / 2);
 }
 
 #[test]
@@ -289,7 +284,8 @@ fn bunny_phong_heapless_lights_does_not_allocate() {
     let desc = bunny_mesh();
     let mut m = KernelMesh::from_desc(&desc);
     let mut sums = vec![[0i32; 3]; m.positions.len()];
-    vertex_normals(&m.positions, &m.indices, &mut sums, &mut m.normals).expect("normals");
+    let bare = Mesh::new(&m.positions, m.bounds, &m.indices);
+    vertex_normals(&bare, &mut sums, &mut m.normals).expect("normals");
     let mut b = Buffers::new(m.positions.len());
     let material = Material::new()
         .with_ambient(rgb(0.6, 0.6, 0.7))
@@ -324,7 +320,8 @@ fn bunny_phong_heapless_lights_does_not_allocate() {
 fn bunny_tuple_lights_two_sided_without_depth_does_not_allocate() {
     let mut m = KernelMesh::from_desc(&bunny_mesh());
     let mut sums = vec![[0i32; 3]; m.positions.len()];
-    vertex_normals(&m.positions, &m.indices, &mut sums, &mut m.normals).expect("normals");
+    let bare = Mesh::new(&m.positions, m.bounds, &m.indices);
+    vertex_normals(&bare, &mut sums, &mut m.normals).expect("normals");
     let mut b = Buffers::new(m.positions.len());
     let material = Material::new().with_specular(Phong {
         color: rgb(0.4, 0.4, 0.4),

@@ -25,7 +25,7 @@ use fixshade::error_measure::{compare, ErrorStats};
 use fixshade::framebuffer::Framebuffer;
 use fixshade::generate;
 use fixshade::illumination::InfiniteViewer;
-use fixshade::mesh::Mesh;
+use fixshade::mesh::{Mesh, PackedNormal};
 use fixshade::reference::{self, quantize_rgb565};
 use fixshade::render::{CachedVertex, Flat, Gouraud, NoDepth, RenderOptions, Renderer};
 use fixshade::scene_desc::{
@@ -33,7 +33,7 @@ use fixshade::scene_desc::{
     Viewer,
 };
 use fixshade::scene_kernel::KernelScene;
-use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
+use fixshade::{Mat4, Material, Rgb, Vec3};
 use fuzz_scene::CountingTarget;
 
 // ---------------------------------------------------------------------------
@@ -53,7 +53,7 @@ fn measure(name: &str, scene: &SceneDesc) -> ErrorStats {
     let stats = k.render(&mut t, &mut depth, &mut cache).expect("render");
     assert_eq!(t.outside, 0, "{name}: pixels sent outside the target");
     assert_eq!(stats, frame.stats, "{name}: the two renders differ");
-    let r = reference::render(scene).expect("reference");
+    let r = reference::render(k.reference_scene()).expect("reference");
     compare(&frame.pixels, &frame.covered, &r)
 }
 
@@ -377,7 +377,8 @@ fn spot_cone_edge_through_pixel_centres() {
         let name = format!("spot cone edge through pixel centres, exponent {p}");
         let e = check(&name, &s);
         assert!(e.exact_share >= 0.99, "{name}: {e}");
-        let r = reference::render(&s).expect("reference");
+        let kernel = KernelScene::new(&s).expect("kernel scene");
+        let r = reference::render(kernel.reference_scene()).expect("reference");
         let mut on_circle = 0;
         for (i, &step) in r.step.iter().enumerate() {
             let (x, y) = ((i as u32 % size) as f64, (i as u32 / size) as f64);
@@ -511,6 +512,9 @@ fn degenerate_triangles_and_slivers() {
         [-0.8, -0.3, 0.002],
         [0.8, 0.5, 0.002],
         [0.8, 0.51, 0.002],
+        // 15, in no triangle: x spans what y does, so that x and y are
+        // quantised alike and 6–8 stay on the line x = y.
+        [0.9501, -0.95, 0.0],
     ];
     let indices = vec![
         [0, 1, 2],
@@ -545,7 +549,8 @@ fn degenerate_triangles_and_slivers() {
             // Only the real triangle and the slivers' pixels: the
             // degenerate ones add nothing.
             let alone = {
-                let mut t = s.clone();
+                let k = KernelScene::new(&s).unwrap();
+                let mut t = k.reference_scene().clone();
                 t.mesh.indices = vec![[0, 1, 2], [9, 11, 10], [12, 13, 14]];
                 reference::render(&t).unwrap().covered_count()
             };
@@ -566,7 +571,8 @@ fn sub_pixel_slivers_between_centres_draw_nothing() {
         .unwrap();
     let q = 1 << 21; // 1/8 unit = one pixel, in I8F24
     let p = |x: i32, y: i32| Vec3::from_bits(x, y, 0);
-    let positions = [
+    // Two meshes (each has its box: the far one's steps are 1/256 unit).
+    let near = common::quantised(&[
         // A sliver along a pixel-boundary row (y = 0), 1/64 pixel tall.
         p(-6 * q, 0),
         p(6 * q, 0),
@@ -575,14 +581,16 @@ fn sub_pixel_slivers_between_centres_draw_nothing() {
         p(q / 8, q / 8),
         p(q / 4, q / 8),
         p(q / 8, q / 4),
-        // Zero area, far outside.
-        p(i32::MAX, i32::MAX),
-        p(i32::MIN, i32::MIN),
-        p(0, 0),
+    ]);
+    // Zero area, far outside.
+    let far = common::quantised(&[p(i32::MAX, i32::MAX), p(i32::MIN, i32::MIN), p(0, 0)]);
+    let normals = [PackedNormal::Z; 6];
+    let near_idx = [[0u16, 1, 2], [3, 4, 5]];
+    let far_idx = [[0u16, 1, 2], [0, 0, 0]];
+    let meshes = [
+        Mesh::new(&near.positions, near.bounds, &near_idx).with_normals(&normals),
+        Mesh::new(&far.positions, far.bounds, &far_idx).with_normals(&normals[..3]),
     ];
-    let idx = [[0u16, 1, 2], [3, 4, 5], [6, 7, 8], [6, 6, 6]];
-    let normals = [Unit3::Z; 9];
-    let mesh = Mesh::new(&positions, &idx).with_normals(&normals);
     let m = Material::new();
     let sun = fixshade::light::DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     let opts = RenderOptions {
@@ -592,12 +600,14 @@ fn sub_pixel_slivers_between_centres_draw_nothing() {
     let r =
         Renderer::<_, InfiniteViewer, _>::new(&camera, Mat4::IDENTITY, &m, Rgb::BLACK, &sun, opts);
     let mut t = CountingTarget::new(16, 16);
-    let mut cache = [CachedVertex::default(); 9];
-    let stats = r
-        .draw::<Gouraud, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
-        .unwrap();
-    assert_eq!(t.outside, 0);
-    assert_eq!(t.writes, 0, "{stats:?}");
+    let mut cache = [CachedVertex::default(); 6];
+    for mesh in &meshes {
+        let stats = r
+            .draw::<Gouraud, _, _>(mesh, &mut t, &mut NoDepth, &mut cache)
+            .unwrap();
+        assert_eq!(t.outside, 0);
+        assert_eq!(t.writes, 0, "{stats:?}");
+    }
 }
 
 /// Triangles far larger than the screen: a quad 10⁻⁴ in front of the near
@@ -739,7 +749,8 @@ fn target_4096_square() {
         specular_model: scene.specular_model,
         viewer: scene.viewer,
     };
-    let normals = scene.mesh.normals.as_ref().unwrap();
+    // The normals the kernel draws (packed and decoded).
+    let normals = k.reference_scene().mesh.normals.as_ref().unwrap();
     let colour: Vec<[f64; 3]> = normals
         .iter()
         .map(|n| reference::illuminate(&model, [0.0, 0.0, -1.0], normalized(*n)))
@@ -801,15 +812,15 @@ fn viewport_wider_than_i16() {
     // x_w = (sx·x_e/(−z_e) + 1)·W/2 with the kernel's sx.
     let xe = |xw: f64| (xw / (W as f64 / 2.0) - 1.0) * -z / sx;
     let quad = |x0: f64, x1: f64, z: f64| {
-        [
+        common::quantised(&[
             Vec3::from_f64([x0, -0.1, z]).unwrap(),
             Vec3::from_f64([x1, -0.1, z]).unwrap(),
             Vec3::from_f64([x1, 0.1, z]).unwrap(),
             Vec3::from_f64([x0, 0.1, z]).unwrap(),
-        ]
+        ])
     };
     let idx = [[0u16, 1, 2], [0, 2, 3]];
-    let normals = [Unit3::Z; 4];
+    let normals = [PackedNormal::Z; 4];
     let m = Material::new();
     let sun = fixshade::light::DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     let r = Renderer::<_, InfiniteViewer, _>::new(
@@ -827,7 +838,7 @@ fn viewport_wider_than_i16() {
         (quad(-127.0, 127.0, -1.0 / 256.0), 0..W),
         (quad(xe(a), xe(b), z), 32760..32780),
     ] {
-        let mesh = Mesh::new(&pos, &idx).with_normals(&normals);
+        let mesh = Mesh::new(&pos.positions, pos.bounds, &idx).with_normals(&normals);
         let mut t = CountingTarget::new(W, 2);
         r.draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
             .unwrap();

@@ -37,12 +37,13 @@ use fixshade::framebuffer::Framebuffer;
 use fixshade::generate;
 use fixshade::illumination::InfiniteViewer;
 use fixshade::material::NoSpecular;
-use fixshade::mesh::Mesh;
+use fixshade::mesh::{Bounds, Mesh};
+use fixshade::mesh_convert::MeshData;
 use fixshade::reference;
 use fixshade::render::{CachedVertex, DrawStats, Flat, NoDepth, RenderOptions, Renderer};
 use fixshade::scene_desc::{CameraDesc, LightDesc, MeshDesc, Projection, SceneDesc, Shading};
 use fixshade::scene_kernel::KernelScene;
-use fixshade::{Mat4, Material, Rgb, Vec3};
+use fixshade::{Mat4, Material, Rgb};
 use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------
@@ -192,9 +193,24 @@ impl Ortho {
         )
     }
 
-    fn vec3(p: P256) -> Vec3 {
-        Vec3::from_bits((p.0 << 16) as i32, (p.1 << 16) as i32, 0)
+    /// The quantised position of `p` in [`P256_BOX`]: `p` itself, exactly.
+    fn q(p: P256) -> [i16; 3] {
+        [p.0 as i16, p.1 as i16, 0]
     }
+}
+
+/// The box [−128, 128)³, whose steps are 1/256 unit: [`P256`] positions
+/// are its quantised positions.
+const P256_BOX: Bounds = Bounds::from_bits([0; 3], [1 << 31; 3]);
+
+/// Positions through the host converter (no triangles).
+fn quantised(points: &[[f64; 3]]) -> MeshData {
+    let desc = MeshDesc {
+        positions: points.to_vec(),
+        normals: None,
+        indices: Vec::new(),
+    };
+    MeshData::from_desc(&desc).expect("positions convert")
 }
 
 /// Edge function of SPEC.md 5 / the reference, in 1/16 pixel.
@@ -256,7 +272,8 @@ fn oracle(o: Ortho, positions: &[P256], indices: &[[u16; 3]]) -> Vec<u16> {
 /// Renders a triangle list flat, no lights, no depth, into `target`.
 fn draw(
     camera: &Camera,
-    positions: &[Vec3],
+    positions: &[[i16; 3]],
+    bounds: Bounds,
     indices: &[[u16; 3]],
     cull: bool,
     target: &mut CountingTarget,
@@ -275,7 +292,7 @@ fn draw(
     );
     let mut cache = vec![CachedVertex::default(); positions.len()];
     r.draw::<Flat, _, _>(
-        &Mesh::new(positions, indices),
+        &Mesh::new(positions, bounds, indices),
         target,
         &mut NoDepth,
         &mut cache,
@@ -288,8 +305,8 @@ fn draw(
 fn assert_matches_oracle(what: &str, o: Ortho, positions: &[P256], indices: &[[u16; 3]]) -> usize {
     let expected = oracle(o, positions, indices);
     let mut t = CountingTarget::new(o.size, o.size);
-    let vs: Vec<Vec3> = positions.iter().map(|&p| Ortho::vec3(p)).collect();
-    draw(&o.camera(), &vs, indices, false, &mut t);
+    let vs: Vec<[i16; 3]> = positions.iter().map(|&p| Ortho::q(p)).collect();
+    draw(&o.camera(), &vs, P256_BOX, indices, false, &mut t);
     assert_eq!(
         t.outside, 0,
         "{what}: {} writes outside the target",
@@ -364,8 +381,8 @@ fn counted_render(scene: &SceneDesc) -> (KernelScene, CountingTarget) {
 /// differing only on the reference's silhouette pixels.
 fn check_closed(name: &str, scene: &SceneDesc) -> usize {
     let (w, h) = (scene.width, scene.height);
-    let (_, t) = counted_render(scene);
-    let r = reference::render(scene).expect("reference");
+    let (k, t) = counted_render(scene);
+    let r = reference::render(k.reference_scene()).expect("reference");
     assert_eq!(t.outside, 0, "{name}: writes outside the target");
     let doubles = t.doubles();
     assert!(
@@ -542,19 +559,20 @@ fn perspective_fan_same_as_polygon() {
             .into_iter()
             .enumerate()
         {
-            let mut p = vec![Vec3::from_f64([cx, cy, 0.0]).expect("p")];
+            let mut p = vec![[cx, cy, 0.0]];
             for j in 0..n {
                 let a = 0.31 + std::f64::consts::TAU * j as f64 / n as f64;
                 let (x, y) = (cx + 0.9 * a.cos(), cy + 0.9 * a.sin());
-                p.push(Vec3::from_f64([x, y, tilt * x]).expect("p"));
+                p.push([x, y, tilt * x]);
             }
+            let p = quantised(&p);
             let idx: Vec<[u16; 3]> = (0..n)
                 .map(|j| [0, 1 + j as u16, 1 + ((j + 1) % n) as u16])
                 .collect();
             let mut a = CountingTarget::new(90, 70);
             let mut b = CountingTarget::new(90, 70);
-            draw(&camera, &p, &idx, true, &mut a);
-            draw(&camera, &p, &rim_fan(n), true, &mut b);
+            draw(&camera, &p.positions, p.bounds, &idx, true, &mut a);
+            draw(&camera, &p.positions, p.bounds, &rim_fan(n), true, &mut b);
             let what = format!("perspective fan N={n} #{k}");
             assert_eq!(a.outside + b.outside, 0, "{what}: writes outside");
             assert!(a.doubles().is_empty(), "{what}: doubles {:?}", a.doubles());
@@ -705,13 +723,7 @@ fn huge_triangles_around_the_screen_once() {
 /// triangles that reach far off-screen and behind the eye.
 #[test]
 fn inside_a_box_every_pixel_once() {
-    let mesh = generate::cube(140.0);
-    let positions: Vec<Vec3> = mesh
-        .positions
-        .iter()
-        .map(|p| Vec3::from_f64(*p).expect("p"))
-        .collect();
-    let indices: Vec<[u16; 3]> = mesh.indices.clone();
+    let mesh = MeshData::from_desc(&generate::cube(140.0)).expect("cube");
     let eyes = [[0.0, 0.0, 0.0], [1.3, -2.1, 0.7], [-2.9, 0.4, 2.2]];
     let dirs = [
         [0.0, 0.0, -1.0],
@@ -729,7 +741,14 @@ fn inside_a_box_every_pixel_once() {
                 })
                 .expect("camera");
             let mut t = CountingTarget::new(80, 60);
-            draw(&camera, &positions, &indices, false, &mut t);
+            draw(
+                &camera,
+                &mesh.positions,
+                mesh.bounds,
+                &mesh.indices,
+                false,
+                &mut t,
+            );
             let what = format!("inside box, eye {eye:?} looking {d:?}");
             assert_eq!(t.outside, 0, "{what}: writes outside");
             let holes = t.counts.iter().filter(|&&c| c == 0).count();
@@ -750,15 +769,19 @@ fn near_plane_and_edges_nothing_outside() {
         .and_then(|c| c.with_projection(CamProjection::Perspective { fovy_deg: 70.0 }, 0.1, 100.0))
         .expect("camera");
     let floor = generate::plane(120.0, 7);
-    let positions: Vec<Vec3> = floor
-        .positions
-        .iter()
-        .map(|p| Vec3::from_f64([p[0], 0.0, -p[1]]).expect("p"))
-        .collect();
+    let positions: Vec<[f64; 3]> = floor.positions.iter().map(|p| [p[0], 0.0, -p[1]]).collect();
+    let positions = quantised(&positions);
     let indices: Vec<[u16; 3]> = floor.indices.clone();
     for (w, h) in [(64, 48), (1, 1), (1, 37), (53, 1), (3, 2)] {
         let mut t = CountingTarget::new(w, h);
-        let stats = draw(&camera, &positions, &indices, false, &mut t);
+        let stats = draw(
+            &camera,
+            &positions.positions,
+            positions.bounds,
+            &indices,
+            false,
+            &mut t,
+        );
         assert_eq!(t.outside, 0, "{w}x{h}: writes outside");
         assert!(t.doubles().is_empty(), "{w}x{h}: doubles {:?}", t.doubles());
         assert!(stats.clipped > 0, "{w}x{h}: nothing crossed the near plane");
@@ -772,14 +795,14 @@ fn near_plane_and_edges_nothing_outside() {
 fn tiny_and_empty_targets() {
     let o = Ortho { size: 64, ppu: 32 };
     let big = 256 * 100;
-    let pos: Vec<Vec3> = [(-big, -big), (big, -big), (big, big), (-big, big)]
+    let pos: Vec<[i16; 3]> = [(-big, -big), (big, -big), (big, big), (-big, big)]
         .iter()
-        .map(|&p| Ortho::vec3(p))
+        .map(|&p| Ortho::q(p))
         .collect();
     let idx = [[0u16, 1, 2], [0, 2, 3]];
     for (w, h, expect) in [(1, 1, 1), (0, 0, 0), (0, 5, 0), (5, 0, 0), (1, 2, 2)] {
         let mut t = CountingTarget::new(w, h);
-        let stats = draw(&o.camera(), &pos, &idx, false, &mut t);
+        let stats = draw(&o.camera(), &pos, P256_BOX, &idx, false, &mut t);
         assert_eq!(t.outside, 0, "{w}x{h}: writes outside");
         assert_eq!(t.written(), expect, "{w}x{h}: {stats:?}");
         assert!(t.doubles().is_empty(), "{w}x{h}: doubles");
@@ -813,13 +836,13 @@ fn tiny_and_empty_targets() {
 fn offset_target_origin() {
     let o = Ortho { size: 64, ppu: 1 };
     let (p, idx) = fan(16, (77, -201), 40.0, 0.3, false);
-    let vs: Vec<Vec3> = p.iter().map(|&q| Ortho::vec3(q)).collect();
+    let vs: Vec<[i16; 3]> = p.iter().map(|&q| Ortho::q(q)).collect();
     let mut plain = CountingTarget::new(64, 64);
-    draw(&o.camera(), &vs, &idx, true, &mut plain);
+    draw(&o.camera(), &vs, P256_BOX, &idx, true, &mut plain);
     let mut failures = Vec::new();
     for origin in [Point::new(-13, 7), Point::new(250, -3000), Point::new(5, 0)] {
         let mut t = CountingTarget::with_origin(origin, 64, 64);
-        draw(&o.camera(), &vs, &idx, true, &mut t);
+        draw(&o.camera(), &vs, P256_BOX, &idx, true, &mut t);
         assert_eq!(t.outside, 0, "origin {origin:?}: writes outside");
         let differ: Vec<(usize, usize, u16, u16)> = (0..64 * 64)
             .filter(|&i| t.counts[i] != plain.counts[i])
@@ -846,9 +869,9 @@ fn offset_target_origin() {
 fn spans_go_through_fill_contiguous() {
     let o = Ortho { size: 64, ppu: 1 };
     let (p, idx) = fan(7, (128, -128), 27.0, 0.0, false);
-    let vs: Vec<Vec3> = p.iter().map(|&q| Ortho::vec3(q)).collect();
+    let vs: Vec<[i16; 3]> = p.iter().map(|&q| Ortho::q(q)).collect();
     let mut t = CountingTarget::new(64, 64);
-    draw(&o.camera(), &vs, &idx, true, &mut t);
+    draw(&o.camera(), &vs, P256_BOX, &idx, true, &mut t);
     assert_eq!(t.iter_pixels, 0, "pixels sent one by one through draw_iter");
     assert!(t.fill_calls > 0);
     // At most one call per row and triangle.

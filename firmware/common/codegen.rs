@@ -2,8 +2,9 @@
 //! firmware that cannot run the `std` scene code.
 //!
 //! Every value is converted exactly as `fixshade::scene_kernel::KernelScene`
-//! converts it on the host (the same kernel functions on the same `f64`s),
-//! and written as raw bits, so the device renders from the very inputs the
+//! converts it on the host (the same kernel functions on the same `f64`s;
+//! meshes by the host converter, `fixshade::mesh_convert`), and written as
+//! raw bits or mesh bytes, so the device renders from the very inputs the
 //! host renders from.
 
 use std::fmt::Write;
@@ -11,9 +12,9 @@ use std::fmt::Write;
 use fixshade::camera::Camera;
 use fixshade::color::{Rgb, Shade};
 use fixshade::light::{unit_from_f64, Attenuation, SpotCone, WidePoint};
-use fixshade::mesh::vertex_normals;
+use fixshade::mesh_convert::MeshData;
 use fixshade::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
-use fixshade::{Exponent, Mat4, Unit3, Vec3};
+use fixshade::{Exponent, Mat4, Unit3};
 
 /// A firmware build script's common start: puts the crate's `memory.x` on
 /// the linker's path, says what reruns the script, and returns `OUT_DIR`.
@@ -115,47 +116,24 @@ fn point(p: [f64; 3], d: [f64; 3], s: [f64; 3], a: [f64; 3]) -> String {
     )
 }
 
-/// `pub static {NAME}_P`, `_N`, `_I`: positions, normals, indices.
+/// A scene's mesh in the kernel's flash format, converted by the host
+/// converter exactly as `KernelScene::new` converts it (normals derived by
+/// the kernel's `vertex_normals` where the description has none).
+pub fn mesh_data(m: &MeshDesc) -> MeshData {
+    let mut data = MeshData::from_desc(m).expect("mesh");
+    data.derive_normals().expect("normals");
+    data
+}
+
+/// The converter's Rust source for a mesh: `pub static {NAME}` (the
+/// `Mesh`) over `{NAME}_POSITIONS`, `{NAME}_NORMALS`, `{NAME}_INDICES`.
 pub fn mesh_statics(name: &str, m: &MeshDesc) -> String {
-    let positions: Vec<Vec3> = m
-        .positions
-        .iter()
-        .map(|p| Vec3::from_f64(*p).expect("position"))
-        .collect();
-    let indices: &[[u16; 3]] = &m.indices;
-    let normals: Vec<Unit3> = match &m.normals {
-        Some(ns) => ns
-            .iter()
-            .map(|n| unit_from_f64(*n).unwrap_or(Unit3::ZERO))
-            .collect(),
-        None => {
-            let mut sums = vec![[0i32; 3]; positions.len()];
-            let mut out = vec![Unit3::ZERO; positions.len()];
-            vertex_normals(&positions, indices, &mut sums, &mut out).expect("normals");
-            out
-        }
-    };
-    let up = name.to_uppercase();
-    let mut s = String::new();
-    let _ = writeln!(s, "pub static {up}_P: [Vec3; {}] = [", positions.len());
-    for p in &positions {
-        let b = p.to_bits();
-        let _ = writeln!(s, "Vec3::from_bits({}, {}, {}),", b[0], b[1], b[2]);
-    }
-    let _ = writeln!(s, "];\npub static {up}_N: [Unit3; {}] = [", normals.len());
-    for n in &normals {
-        let _ = writeln!(s, "{},", unit(*n));
-    }
-    let _ = writeln!(
-        s,
-        "];\npub static {up}_I: [[u16; 3]; {}] = [",
-        indices.len()
-    );
-    for t in indices {
-        let _ = writeln!(s, "[{}, {}, {}],", t[0], t[1], t[2]);
-    }
-    s.push_str("];\n");
-    s
+    mesh_data(m).to_rust(name)
+}
+
+/// The converter's bytes for a mesh, for `fixshade::include_mesh!`.
+pub fn mesh_bytes(m: &MeshDesc) -> Vec<u8> {
+    mesh_data(m).to_bytes()
 }
 
 /// A scene's set-up in kernel types, as Rust source.
@@ -287,5 +265,5 @@ use fixshade::material::{BlinnPhong, Phong};
 #[allow(unused_imports)]
 use fixshade::render::{Flat, Gouraud, PhongShading, RenderOptions};
 #[allow(unused_imports)]
-use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
+use fixshade::{Exponent, Mat4, Material, Rgb, Unit3};
 ";

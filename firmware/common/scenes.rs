@@ -57,8 +57,8 @@ pub fn variants() -> Vec<Variant> {
 /// What the Cortex-M0 firmware (firmware/microbit, 256 KB of flash, 16 KB
 /// of RAM) renders band by band: S1, S2 and S4 in their own shading mode
 /// (file names `m0_` and the standard name). S3's mesh (18 721 vertices,
-/// 36 864 triangles: about 560 KB as kernel statics) does not fit the
-/// flash.
+/// 36 480 triangles: 406 KB in the kernel's flash format) does not fit
+/// the flash.
 pub fn m0_variants() -> Vec<Variant> {
     variants()
         .into_iter()

@@ -19,8 +19,9 @@ fn main() {
     let mut table = String::new();
     for v in &variants {
         let c = codegen::setup(&v.desc);
-        s.push_str(&codegen::mesh_statics(v.mesh, &v.desc.mesh));
-        let m = v.mesh.to_uppercase();
+        // The mesh as bytes, read in place from flash by `include_mesh!`.
+        let file = format!("{}.fxm", v.mesh);
+        fs::write(out.join(&file), codegen::mesh_bytes(&v.desc.mesh)).expect("mesh bytes");
         let depth = if c.depth {
             "let mut db = fixshade::depth::DepthBand::new(depth);"
         } else {
@@ -37,7 +38,8 @@ pub fn render_{name}(target: &mut super::Stream, colour: &mut [u16], depth: &mut
     let camera = {camera};
     let material = {material};
     let lights: {lights_type} = {lights};
-    let mesh = fixshade::mesh::Mesh::new(&{m}_P, &{m}_I).with_normals(&{m}_N);
+    let mesh = fixshade::include_mesh!(concat!(env!(\"OUT_DIR\"), \"/{file}\"))
+        .map_err(fixshade::render::RenderError::Mesh)?;
     let r = fixshade::render::Renderer::<_, {viewer}, _>::new(&camera, {model}, &material, {ambient}, &lights, {options});
     let mut bands = fixshade::band::Bands {{
         colour,

@@ -50,7 +50,7 @@ pub fn render_{name}(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [Cache
     let camera = {camera};
     let material = {material};
     let lights: {lights_type} = {lights};
-    let mesh = Mesh::new(&{m}_P, &{m}_I).with_normals(&{m}_N);
+    let mesh = {m};
     let _ = fb.clear(Rgb565::from(RawU16::new({bg})));
     {depth}
     crate::count::begin();

@@ -34,11 +34,13 @@ use fixshade::light::{
     AnyLight, AreaLight, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight, WidePoint,
 };
 use fixshade::material::{BlinnPhong, NoSpecular, Phong, Specular};
-use fixshade::mesh::{Mesh, MeshError};
+use fixshade::mesh::{Bounds, Mesh, MeshError, PackedNormal};
+use fixshade::mesh_convert::MeshData;
 use fixshade::render::{
     CachedVertex, DrawStats, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions,
     Renderer, ShadingMode, MAX_TARGET_SIDE,
 };
+use fixshade::scene_desc::MeshDesc;
 use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
 
 // ---------------------------------------------------------------------------
@@ -235,8 +237,10 @@ pub struct Scene {
     pub origin: Point,
     pub camera: Camera,
     pub model: Mat4,
-    pub positions: Vec<Vec3>,
-    pub normals: Option<Vec<Unit3>>,
+    /// Quantised positions and their box.
+    pub positions: Vec<[i16; 3]>,
+    pub bounds: Bounds,
+    pub normals: Option<Vec<PackedNormal>>,
     pub indices: Vec<[u16; 3]>,
     pub emission: Rgb,
     pub ambient: Rgb,
@@ -281,6 +285,37 @@ fn unit(b: &mut Bytes) -> Unit3 {
         _ => fixshade::light::unit_from_f32([b.i8() as f32, b.i8() as f32, b.i8() as f32])
             .unwrap_or(Unit3::Z),
     }
+}
+
+/// A normal from the bytes [`unit`] reads: any bits (the third `u16`
+/// unused), the zero normal, or a unit direction packed.
+fn packed_normal(b: &mut Bytes) -> PackedNormal {
+    match b.u8() % 4 {
+        0 => {
+            let n = PackedNormal::from_bits(b.u16() as i16, b.u16() as i16);
+            let _ = b.u16();
+            n
+        }
+        1 => PackedNormal::ZERO,
+        _ => {
+            let u = fixshade::light::unit_from_f32([b.i8() as f32, b.i8() as f32, b.i8() as f32])
+                .unwrap_or(Unit3::Z);
+            PackedNormal::from_vector(u.to_bits().map(i32::from))
+        }
+    }
+}
+
+/// Raw `I8F24` coordinates quantised by the host converter (every such
+/// coordinate is a position it takes).
+fn quantised(points: &[[i32; 3]]) -> (Vec<[i16; 3]>, Bounds) {
+    let unit = (1u64 << 24) as f64;
+    let desc = MeshDesc {
+        positions: points.iter().map(|p| p.map(|c| c as f64 / unit)).collect(),
+        normals: None,
+        indices: Vec::new(),
+    };
+    let data = MeshData::from_desc(&desc).expect("I8F24 positions convert");
+    (data.positions, data.bounds)
 }
 
 fn wide(b: &mut Bytes) -> WidePoint {
@@ -464,14 +499,17 @@ pub fn decode(data: &[u8]) -> Scene {
     let camera = camera(&mut b);
     let model = model(&mut b);
     let n = b.u8() as usize % 9;
-    let positions: Vec<Vec3> = (0..n)
-        .map(|_| Vec3::from_bits(b.coord(), b.coord(), b.coord()))
-        .collect();
+    let points: Vec<[i32; 3]> = (0..n).map(|_| [b.coord(), b.coord(), b.coord()]).collect();
+    let (positions, mut bounds) = quantised(&points);
     let normals = match b.u8() % 4 {
         0 => None,
         // A wrong count now and then: MeshError::NormalCount.
-        1 => Some((0..(b.u8() as usize % 9)).map(|_| unit(&mut b)).collect()),
-        _ => Some((0..n).map(|_| unit(&mut b)).collect()),
+        1 => Some(
+            (0..(b.u8() as usize % 9))
+                .map(|_| packed_normal(&mut b))
+                .collect(),
+        ),
+        _ => Some((0..n).map(|_| packed_normal(&mut b)).collect()),
     };
     let t = b.u8() as usize % 9;
     let bad = b.u8() % 8 == 0;
@@ -517,6 +555,11 @@ pub fn decode(data: &[u8]) -> Scene {
         1 => (0, 1 + short as usize / 16),
         _ => (0, 0),
     };
+    // Last (so that inputs written before it decode as they did): now and
+    // then a box of any bits instead of the converter's.
+    if b.u8() % 4 == 3 {
+        bounds = Bounds::from_bits([0; 3].map(|_: i32| b.coord()), [0; 3].map(|_: u32| b.u32()));
+    }
     // Keep memory and time per run bounded: shrink the other side.
     let (mut width, mut height) = (width, height);
     if width as u64 * height as u64 > MAX_PIXELS {
@@ -533,6 +576,7 @@ pub fn decode(data: &[u8]) -> Scene {
         camera,
         model,
         positions,
+        bounds,
         normals,
         indices,
         emission,
@@ -570,6 +614,7 @@ pub struct Report {
 pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     let mesh = Mesh {
         positions: &s.positions,
+        bounds: s.bounds,
         normals: s.normals.as_deref(),
         indices: &s.indices,
     };
@@ -630,6 +675,7 @@ fn draw_both<S: Specular, V: Viewer, M: ShadingMode>(s: &Scene, m: Material<S>) 
     );
     let mesh = Mesh {
         positions: &s.positions,
+        bounds: s.bounds,
         normals: s.normals.as_deref(),
         indices: &s.indices,
     };

@@ -21,7 +21,6 @@ use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
 use fixshade::depth::NoDepth;
 use fixshade::illumination::InfiniteViewer;
-use fixshade::mesh::Mesh;
 use fixshade::render::{CachedVertex, Flat, RenderOptions, Renderer};
 use fixshade::Mat4;
 use micromath::F32Ext;
@@ -39,7 +38,7 @@ mod scene {
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
-const VERTICES: usize = scene::SPHERE_P.len();
+const VERTICES: usize = scene::SPHERE_POSITIONS.len();
 static mut CACHE: [MaybeUninit<CachedVertex>; VERTICES] =
     [const { MaybeUninit::uninit() }; VERTICES];
 
@@ -117,7 +116,7 @@ fn main() -> ! {
         }
         core::slice::from_raw_parts_mut(cache.as_mut_ptr().cast::<CachedVertex>(), VERTICES)
     };
-    let mesh = Mesh::new(&scene::SPHERE_P, &scene::SPHERE_I).with_normals(&scene::SPHERE_N);
+    let mesh = scene::SPHERE;
     let material = scene::MATERIAL.with_specular(scene::SPECULAR);
     let mut angle = 0.0f32;
     loop {

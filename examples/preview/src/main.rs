@@ -190,10 +190,11 @@ fn median(times: &VecDeque<Duration>) -> Duration {
     v.get(v.len() / 2).copied().unwrap_or_default()
 }
 
-/// The kernel's error against the reference for this scene.
-fn error(kernel: &KernelScene, desc: &SceneDesc) -> Result<ErrorStats, String> {
+/// The kernel's error against the reference for this scene (the reference
+/// renders the mesh the kernel draws, quantised).
+fn error(kernel: &KernelScene) -> Result<ErrorStats, String> {
     let frame = kernel.render_frame().map_err(|e| e.to_string())?;
-    let reference = reference::render(desc).map_err(|e| e.to_string())?;
+    let reference = reference::render(kernel.reference_scene()).map_err(|e| e.to_string())?;
     Ok(compare(&frame.pixels, &frame.covered, &reference))
 }
 
@@ -261,7 +262,7 @@ fn run() -> Result<(), (u8, String)> {
         }
         times.push_back(start.elapsed());
         if now >= error_due {
-            last_error = Some(error(&kernel, &desc));
+            last_error = Some(error(&kernel));
             error_due = now + ERROR_PERIOD;
         }
 

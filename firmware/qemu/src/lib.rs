@@ -25,7 +25,6 @@ pub mod scenes {
     use embedded_graphics::prelude::*;
     use fixshade::depth::{DepthBuffer, NoDepth};
     use fixshade::framebuffer::Framebuffer;
-    use fixshade::mesh::Mesh;
     use fixshade::render::{CachedVertex, DrawStats, RenderError, Renderer};
 
     use crate::Variant;

@@ -23,7 +23,7 @@ const W: u32 = 320;
 const H: u32 = 240;
 const PIXELS: usize = (W * H) as usize;
 #[cfg(feature = "ambient")]
-const VERTICES: usize = fixshade_firmware_qemu::scenes::SPHERE48_P.len();
+const VERTICES: usize = fixshade_firmware_qemu::scenes::SPHERE48_POSITIONS.len();
 #[cfg(not(feature = "ambient"))]
 const VERTICES: usize = 0;
 #[cfg(feature = "depth")]
@@ -40,13 +40,12 @@ static mut CACHE: [MaybeUninit<CachedVertex>; VERTICES] =
 #[inline(never)]
 fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -> RenderResult {
     use fixshade::illumination::InfiniteViewer;
-    use fixshade::mesh::Mesh;
     use fixshade::render::{RenderOptions, Renderer};
     use fixshade::Mat4;
     use fixshade_firmware_qemu::count;
     use fixshade_firmware_qemu::scenes::*;
 
-    let mesh = Mesh::new(&SPHERE48_P, &SPHERE48_I).with_normals(&SPHERE48_N);
+    let mesh = SPHERE48;
     #[cfg(not(feature = "specular"))]
     let material = S1_MATERIAL;
     #[cfg(feature = "specular")]
