@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Firmware checks (issue 8), deterministic, on emulated Cortex-M:
+# Firmware checks, deterministic, on emulated Cortex-M:
 #  (and the Cortex-M0 firmware on QEMU's microbit, 16 KB of RAM, band by band)
 #  1. builds the QEMU instruction-count plugin, the host reference renderer
 #     and the firmware for thumbv7em-none-eabihf (Cortex-M4F) and
@@ -11,17 +11,29 @@
 #  3. counts the instructions of every render call with the plugin;
 #  4. builds the flash/RAM scene configurations for both targets, sizes
 #     them with arm-none-eabi-size, runs them for the stack high-water
-#     mark and the instruction count;
+#     mark and the instruction count; the `s1` configuration (standard
+#     scene S1 and nothing more) must print the checksum of the host's S1
+#     frame (exit 1 if not);
 #  5. writes report/firmware_counts.json and report/firmware.md (into
-#     $FIRMWARE_REPORT instead if set).
+#     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
+#     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
+#     harness's arm.tsv works too).
 # Needs: qemu-system-arm, binutils-arm-none-eabi, gcc, the two Rust targets.
-# FIRMWARE_QUICK=1 skips step 4.
+# FIRMWARE_QUICK=1 skips step 4, and then writes the report into
+# $OUT/report unless FIRMWARE_REPORT is set, so that a quick run leaves
+# the committed report, which has the configurations, alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 OUT=${FIRMWARE_OUT:-$ROOT/target/firmware}
 TGT=${CARGO_TARGET_DIR_FW:-$ROOT/target/fw}
-REPORT=${FIRMWARE_REPORT:-$ROOT/report}
+if [ "${FIRMWARE_QUICK:-0}" = 1 ]; then
+    REPORT=${FIRMWARE_REPORT:-$OUT/report}
+else
+    REPORT=${FIRMWARE_REPORT:-$ROOT/report}
+fi
+# Relative, as the report names it.
+PEERS_TSV=${FIRMWARE_PEERS_TSV:-firmware/peers/tgx.tsv}
 rm -rf "$OUT"
 mkdir -p "$OUT"
 
@@ -33,6 +45,9 @@ gcc -O2 -Wall -Wextra -Werror -shared -fPIC -o "$OUT/libinsn_count.so" firmware/
 
 echo "== host reference frames"
 CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- "$OUT/host" > "$OUT/host.log"
+host_checksum() {
+    CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --checksum "$1"
+}
 
 sym() { arm-none-eabi-nm "$1" | awk -v s="$2" '$3 == s { print "0x" $1 }'; }
 
@@ -91,7 +106,7 @@ done
 if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
         echo "== scene configurations for $t"
-        for level in none ambient lambert specular point spot depth phong; do
+        for level in none ambient lambert specular point spot depth phong s1; do
             feat=()
             [ $level = none ] || feat=(--features $level)
             (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
@@ -106,6 +121,15 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                 run_counted "$elf" "$d"
             fi
             echo "  $level: $(cat "$d/console.log")"
+            if [ $level = s1 ]; then
+                want=$(host_checksum "$OUT/host/s1_gouraud.bin")
+                if grep -q "checksum=$want " "$d/console.log"; then
+                    echo "  s1: checksum of the host's s1_gouraud frame"
+                else
+                    echo "  s1: checksum DIFFERS from the host's s1_gouraud frame ($want)"
+                    exit 1
+                fi
+            fi
         done
     done
 fi
@@ -119,4 +143,4 @@ for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
 done
 
 echo "== report"
-CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --report "$OUT" "$REPORT"
+CARGO_TARGET_DIR=$TGT/host cargo run --release -q --manifest-path firmware/host/Cargo.toml -- --report "$OUT" "$REPORT" "$PEERS_TSV"

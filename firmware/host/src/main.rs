@@ -1,5 +1,9 @@
-//! `fixshade-firmware-host --report RAW_DIR REPORT_DIR`: the report of
-//! scripts/firmware.sh (see `report.rs`).
+//! `fixshade-firmware-host --report RAW_DIR REPORT_DIR [PEERS_TSV]`: the
+//! report of scripts/firmware.sh (see `report.rs`).
+//!
+//! `fixshade-firmware-host --checksum FILE`: prints the checksum that
+//! firmware/qemu's `fixshade-config` prints of its frame (FNV-1a over the
+//! little-endian RGB565 pixels), for a frame file written here.
 //!
 //! `fixshade-firmware-host OUT_DIR`: renders every frame the firmware
 //! renders (firmware/common/scenes.rs) on the host with
@@ -21,11 +25,24 @@ mod scenes;
 
 fn main() -> ExitCode {
     let args: Vec<_> = std::env::args_os().collect();
-    if args.len() == 4 && args[1] == "--report" {
-        return match report::run(args[2].as_ref(), args[3].as_ref()) {
+    if (args.len() == 4 || args.len() == 5) && args[1] == "--report" {
+        let peers = args.get(4).map(|p| p.as_ref());
+        return match report::run(args[2].as_ref(), args[3].as_ref(), peers) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("report: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
+    if args.len() == 3 && args[1] == "--checksum" {
+        return match std::fs::read(&args[2]) {
+            Ok(bytes) => {
+                println!("{:08x}", checksum(&bytes));
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("{}: {e}", PathBuf::from(&args[2]).display());
                 ExitCode::FAILURE
             }
         };
@@ -72,4 +89,12 @@ fn main() -> ExitCode {
         );
     }
     ExitCode::SUCCESS
+}
+
+/// FNV-1a over a frame's pixels (little-endian RGB565, a trailing odd
+/// byte ignored), as firmware/qemu's `fixshade-config` computes it.
+fn checksum(bytes: &[u8]) -> u32 {
+    bytes.chunks_exact(2).fold(0x811c_9dc5u32, |h, p| {
+        (h ^ u32::from(u16::from_le_bytes([p[0], p[1]]))).wrapping_mul(0x0100_0193)
+    })
 }

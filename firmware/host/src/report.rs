@@ -1,6 +1,8 @@
-//! `--report RAW_DIR REPORT_DIR`: turns what scripts/firmware.sh collected
-//! (console lines, plugin counts, `arm-none-eabi-size -A` output) into
-//! `REPORT_DIR/firmware_counts.json` and `REPORT_DIR/firmware.md`.
+//! `--report RAW_DIR REPORT_DIR [PEERS_TSV]`: turns what
+//! scripts/firmware.sh collected (console lines, plugin counts,
+//! `arm-none-eabi-size -A` output) into `REPORT_DIR/firmware_counts.json`
+//! and `REPORT_DIR/firmware.md`, with tgx's instruction counts from
+//! `PEERS_TSV` beside ours (see [`peers`]).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -26,18 +28,44 @@ const TARGETS: [(&str, &str); 2] = [
     ("thumbv6m-none-eabi", "Cortex-M0+"),
 ];
 
-const LEVELS: [(&str, &str); 8] = [
-    ("none", "runtime only (no render call)"),
+/// The configurations of the flash/RAM table: level (firmware/qemu
+/// feature), what it renders, and the level its Δ columns are taken
+/// against.
+const LEVELS: [(&str, &str, Option<&str>); 9] = [
+    ("none", "runtime only (no render call)", None),
     (
         "ambient",
         "ambient only (`()` lights, `NoSpecular`, Gouraud, `NoDepth`)",
+        Some("none"),
     ),
-    ("lambert", "+ Lambert (one `DirectionalLight`)"),
-    ("specular", "+ directional specular (`BlinnPhong`)"),
-    ("point", "+ point light with attenuation"),
-    ("spot", "+ spot light"),
-    ("depth", "+ depth buffer (`DepthBuffer`)"),
-    ("phong", "+ Phong shading (`PhongShading`)"),
+    (
+        "lambert",
+        "+ Lambert (one `DirectionalLight`)",
+        Some("ambient"),
+    ),
+    (
+        "specular",
+        "+ directional specular (`BlinnPhong`)",
+        Some("lambert"),
+    ),
+    ("point", "+ point light with attenuation", Some("specular")),
+    ("spot", "+ spot light", Some("point")),
+    ("depth", "+ depth buffer (`DepthBuffer`)", Some("spot")),
+    ("phong", "+ Phong shading (`PhongShading`)", Some("depth")),
+    (
+        "s1",
+        "**S1 as drawn**: one `DirectionalLight`, `BlinnPhong`, Gouraud, `DepthBuffer`, culling (Δ against \"+ directional specular\")",
+        Some("specular"),
+    ),
+];
+
+/// The standard frames (each scene in its own shading mode), in the
+/// order of the table beside tgx.
+const STANDARD: [(&str, &str); 4] = [
+    ("S1", "s1_gouraud"),
+    ("S2", "s2_gouraud"),
+    ("S3", "s3_gouraud"),
+    ("S4", "s4_phong"),
 ];
 
 /// `key=value` pairs of a console line.
@@ -151,6 +179,81 @@ fn config(dir: &Path) -> Result<Config, String> {
     })
 }
 
+/// A peer's instruction counts per core and scene.
+struct Peers {
+    /// (`m4` or `m0`, `S1`…) → instructions of the second frame's draw.
+    draw: BTreeMap<(String, String), u64>,
+    /// Where the figures come from, for the sentence under the table.
+    source: String,
+}
+
+/// tgx's rows (`peer` = `tgx`: the `drawMesh` harness) of a peer harness
+/// table: `run_all_arm.sh`'s arm.tsv, or the transcription of its results
+/// kept in firmware/peers. Tab-separated with a header row naming at least
+/// `peer`, `core`, `scene` and `draw2`; lines starting with `#` state the
+/// figures' provenance. A later row replaces an earlier one of the same
+/// core and scene, as arm.tsv is appended to run after run.
+fn peers(p: &Path) -> Result<Peers, String> {
+    let text = read(p)?;
+    let mut notes = Vec::new();
+    let mut header: Option<Vec<&str>> = None;
+    let mut draw = BTreeMap::new();
+    for line in text.lines() {
+        if let Some(n) = line.strip_prefix('#') {
+            notes.push(n.trim());
+            continue;
+        }
+        let cells: Vec<&str> = line.split('\t').map(str::trim).collect();
+        let Some(h) = &header else {
+            header = Some(cells);
+            continue;
+        };
+        let col = |name: &str| -> Result<&str, String> {
+            h.iter()
+                .position(|c| *c == name)
+                .and_then(|i| cells.get(i).copied())
+                .ok_or_else(|| format!("{}: no column {name} in {line:?}", p.display()))
+        };
+        if col("peer")? != "tgx" {
+            continue;
+        }
+        let n = col("draw2")?
+            .parse()
+            .map_err(|e| format!("{}: draw2 in {line:?}: {e}", p.display()))?;
+        draw.insert((col("core")?.to_string(), col("scene")?.to_string()), n);
+    }
+    let source = if notes.is_empty() {
+        format!(
+            "column draw2 of `{}`, written by the peer harness's run_all_arm.sh.",
+            p.display()
+        )
+    } else {
+        format!("`{}`. {}", p.display(), notes.join(" "))
+    };
+    Ok(Peers { draw, source })
+}
+
+/// `s` as a JSON string literal.
+fn json_str(s: &str) -> String {
+    let mut o = String::from('"');
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+fn opt(n: Option<u64>) -> String {
+    n.map(|n| n.to_string()).unwrap_or_else(|| "null".into())
+}
+
 fn ms(instr: u64, cpi: f64, mhz: f64) -> f64 {
     instr as f64 * cpi / (mhz * 1000.0)
 }
@@ -163,8 +266,8 @@ fn per(a: u64, b: u64) -> f64 {
     }
 }
 
-/// Writes the report files.
-pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
+/// Writes the report files; the table beside tgx if `peers_tsv` is given.
+pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), String> {
     let m4 = frames(&raw.join(TARGETS[0].0))?;
     let m0 = frames(&raw.join(TARGETS[1].0))?;
     let mut md = String::new();
@@ -271,6 +374,63 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
         s2 as f64 / 76800.0
     );
 
+    if let Some(p) = peers_tsv {
+        let tgx = peers(p)?;
+        let _ = writeln!(
+            md,
+            "## Speed on the devices beside tgx\n\n\
+             Instructions per frame, draw only (the renderer's per-frame set-up and the draw call; \
+             no clear), counted by the same plugin between the same kind of markers on the same \
+             QEMU machine; each scene in its own shading mode. tgx is github.com/vindar/tgx's \
+             `Renderer3D` (float, Gouraud, a 16-bit z-buffer where the scene has a depth test) drawing \
+             the same triangles with `drawMesh`; how closely its frames match ours is in the peer \
+             harness's RESULTS.md.\n\n\
+             | scene | fixshade M4F | tgx M4F | fixshade M0+ | tgx M0+ |\n\
+             | --- | ---: | ---: | ---: | ---: |"
+        );
+        let mut rows = Vec::new();
+        for (scene, frame) in STANDARD {
+            let ours = (
+                find(&m4, frame).ok_or(format!("no {frame}"))?,
+                find(&m0, frame).ok_or(format!("no {frame}"))?,
+            );
+            let theirs = |core: &str| {
+                tgx.draw
+                    .get(&(core.to_string(), scene.to_string()))
+                    .copied()
+            };
+            let (t4, t0) = (theirs("m4"), theirs("m0"));
+            let cell = |n: Option<u64>| n.map(|n| n.to_string()).unwrap_or_else(|| "—".into());
+            let _ = writeln!(
+                md,
+                "| {scene} | {} | {} | {} | {} |",
+                ours.0,
+                cell(t4),
+                ours.1,
+                cell(t0)
+            );
+            rows.push(format!(
+                "{{\"scene\": \"{scene}\", \"fixshade_m4\": {}, \"tgx_m4\": {}, \"fixshade_m0plus\": {}, \"tgx_m0plus\": {}}}",
+                ours.0,
+                opt(t4),
+                ours.1,
+                opt(t0)
+            ));
+        }
+        let _ = writeln!(
+            md,
+            "\nfixshade: this run (the standard frames of the first table). tgx: {} \
+             —: the harness does not run that scene.\n",
+            tgx.source
+        );
+        let _ = writeln!(
+            js,
+            "  \"beside_tgx\": {{\"tgx_source\": {}, \"scenes\": [{}]}},",
+            json_str(&tgx.source),
+            rows.join(", ")
+        );
+    }
+
     let mb = raw.join("microbit");
     let m0_log = read(&mb.join("console.log"))?;
     let m0_lines: Vec<_> = m0_log
@@ -336,16 +496,64 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
             }
         }
     }
+    let cfg = raw.join("config");
+    if cfg.is_dir() {
+        configurations(&cfg, &mut md, &mut js)?;
+    } else {
+        let _ = writeln!(
+            md,
+            "## Flash and RAM per scene configuration\n\n\
+             Not built in this run (`FIRMWARE_QUICK=1`).\n"
+        );
+        js.push_str("  \"configurations\": null\n");
+    }
+    js.push_str("}\n");
+    fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    fs::write(out.join("firmware_counts.json"), js).map_err(|e| e.to_string())?;
+    fs::write(out.join("firmware.md"), md).map_err(|e| e.to_string())?;
+    println!(
+        "wrote {0}/firmware_counts.json and {0}/firmware.md",
+        out.display()
+    );
+    Ok(())
+}
+
+/// Bytes of the symbols of `arm-none-eabi-nm -S -C` output whose name
+/// satisfies `pick`.
+fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
+    nm.lines()
+        .filter_map(|l| {
+            let mut w = l.splitn(4, ' ');
+            let (_, size, _, name) = (w.next()?, w.next()?, w.next()?, w.next()?);
+            pick(name).then(|| u64::from_str_radix(size, 16).ok())?
+        })
+        .sum()
+}
+
+/// The flash/RAM table of the scene configurations under `cfg`
+/// (`cfg/TARGET/LEVEL/`), into the markdown and the JSON.
+fn configurations(cfg: &Path, md: &mut String, js: &mut String) -> Result<(), String> {
+    // What the statics are, from the S1 configuration's symbols (the
+    // largest set: mesh, vertex cache, frame and depth buffer).
+    let nm = read(&cfg.join(TARGETS[1].0).join("s1").join("nm.txt"))?;
+    let mesh = symbol_bytes(&nm, |n| n.contains("scenes::SPHERE48_"));
+    let cache = symbol_bytes(&nm, |n| n == "fixshade_config::CACHE");
+    let frame = symbol_bytes(&nm, |n| n == "fixshade_config::FRAME");
+    let depth = symbol_bytes(&nm, |n| n == "fixshade_config::DEPTH");
     js.push_str("  \"configurations\": {\n");
     let _ = writeln!(
         md,
         "## Flash and RAM per scene configuration\n\n\
          `src/bin/config.rs` in firmware/qemu: S1's sphere (1225 vertices, 2208 triangles), \
-         each row adding one term to the row above. Bytes from `arm-none-eabi-size -A`; \
-         .text includes the vector table; .rodata includes the mesh (35 298 bytes); .bss holds \
-         the 320 × 240 frame (153 600), the vertex cache (1225 × 104 = 127 400) and, from \
-         \"depth\" on, the depth buffer (153 600). Stack: high-water mark of the render call \
-         (painted, rendered, scanned). Instructions: the render call.\n"
+         each row down to \"+ Phong shading\" adding one term to the row above; the last row, \
+         S1 as the standard scene draws it, is the \"+ directional specular\" row with the depth \
+         buffer and without the point and spot lights (its frame's checksum is checked against \
+         the host's S1 frame). Bytes from `arm-none-eabi-size -A`; .text includes the vector \
+         table; .rodata includes the mesh ({mesh} bytes); .bss holds the 320 × 240 frame \
+         ({frame}), the vertex cache (1225 × {} = {cache}) and, in the \"depth\", \"phong\" and \
+         S1 rows, the depth buffer ({depth}). Stack: high-water mark of the render call \
+         (painted, rendered, scanned). Instructions: the render call.\n",
+        cache / 1225
     );
     for (ti, (t, core)) in TARGETS.iter().enumerate() {
         let _ = writeln!(
@@ -353,10 +561,10 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
             "### {core} (`{t}`)\n\n| configuration | .text | Δ .text | .rodata | Δ .rodata | .bss | stack | instructions | pixels |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
         );
         let _ = writeln!(js, "    \"{t}\": [");
-        let mut prev: Option<Config> = None;
-        for (li, (level, what)) in LEVELS.iter().enumerate() {
-            let c = config(&raw.join("config").join(t).join(level))?;
-            let (dt, dr) = match &prev {
+        let mut done: BTreeMap<&str, Config> = BTreeMap::new();
+        for (li, (level, what, base)) in LEVELS.iter().enumerate() {
+            let c = config(&cfg.join(t).join(level))?;
+            let (dt, dr) = match base.and_then(|b| done.get(b)) {
                 Some(p) => (
                     format!("{:+}", c.text as i64 - p.text as i64),
                     format!("{:+}", c.rodata as i64 - p.rodata as i64),
@@ -380,21 +588,14 @@ pub fn run(raw: &Path, out: &Path) -> Result<(), String> {
                 c.rodata,
                 c.bss,
                 c.stack,
-                c.instructions.map(|n| n.to_string()).unwrap_or("null".into()),
+                opt(c.instructions),
                 if li + 1 < LEVELS.len() { "," } else { "" }
             );
-            prev = Some(c);
+            done.insert(level, c);
         }
         let _ = writeln!(js, "    ]{}", if ti + 1 < TARGETS.len() { "," } else { "" });
         md.push('\n');
     }
-    js.push_str("  }\n}\n");
-    fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    fs::write(out.join("firmware_counts.json"), js).map_err(|e| e.to_string())?;
-    fs::write(out.join("firmware.md"), md).map_err(|e| e.to_string())?;
-    println!(
-        "wrote {0}/firmware_counts.json and {0}/firmware.md",
-        out.display()
-    );
+    js.push_str("  }\n");
     Ok(())
 }

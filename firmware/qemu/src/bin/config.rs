@@ -3,9 +3,13 @@
 //! before: `ambient` (no lights), `lambert` (S1's directional light,
 //! diffuse only), `specular` (Blinn–Phong), `point` (+ a point light with
 //! attenuation), `spot` (+ a spot light), `depth` (+ a depth buffer),
-//! `phong` (+ per-pixel shading). Without a feature it renders nothing:
-//! the runtime's own size (semihosting, the panic handler's formatting). Prints a checksum of the frame and the stack
-//! used by the render call, then exits through semihosting.
+//! `phong` (+ per-pixel shading). `s1` is not cumulative: `specular` with
+//! the depth buffer, which is standard scene S1 exactly (scripts/firmware.sh
+//! checks its frame's checksum against the host's `s1_gouraud` frame).
+//! Without a feature it renders nothing: the runtime's own size
+//! (semihosting, the panic handler's formatting). Prints a checksum of the
+//! frame and the stack used by the render call, then exits through
+//! semihosting.
 
 #![no_std]
 #![no_main]
@@ -26,9 +30,9 @@ const PIXELS: usize = (W * H) as usize;
 const VERTICES: usize = fixshade_firmware_qemu::scenes::SPHERE48_POSITIONS.len();
 #[cfg(not(feature = "ambient"))]
 const VERTICES: usize = 0;
-#[cfg(feature = "depth")]
+#[cfg(feature = "depth-buffer")]
 const DEPTH_PIXELS: usize = PIXELS;
-#[cfg(not(feature = "depth"))]
+#[cfg(not(feature = "depth-buffer"))]
 const DEPTH_PIXELS: usize = 0;
 
 static mut FRAME: [u16; PIXELS] = [0; PIXELS];
@@ -63,14 +67,14 @@ fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -
     #[cfg(feature = "phong")]
     type Mode = fixshade::render::PhongShading;
 
-    #[cfg(feature = "depth")]
+    #[cfg(feature = "depth-buffer")]
     let mut db = {
         let mut db = fixshade::depth::DepthBuffer::new(depth, W, H)
             .map_err(|_| fixshade::render::RenderError::DepthTooSmall)?;
         db.clear();
         db
     };
-    #[cfg(not(feature = "depth"))]
+    #[cfg(not(feature = "depth-buffer"))]
     let mut db = {
         let _ = depth;
         fixshade::depth::NoDepth
