@@ -13,6 +13,7 @@ pub mod light;
 pub mod material;
 pub mod mesh;
 pub mod normalize;
+mod platform;
 pub mod rasterizer;
 pub mod render;
 #[cfg(feature = "reference")]

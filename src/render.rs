@@ -1222,7 +1222,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             mul_by_narrow(-2 * c[1], hh) + w,
             c[2] * (1 << 24) - c[2] * (1 << 8),
         ];
-        let [x, y, z] = if cfg!(fixshade_soft_div64) {
+        let [x, y, z] = if crate::platform::SOFT_DIV64 {
             floor_div_all(n, 2 * w)
         } else {
             // (Each division written out: as an array map, x86-64 took
