@@ -24,8 +24,8 @@
 
 use core::ops::{Add, Div, Rem, Sub};
 
+use crate::num::widening::{mul_hi32, mul_u32};
 use crate::platform;
-use crate::widening::{mul_hi32, mul_u32};
 
 /// The operations [`floor_div`] needs: `i32` and `i64`.
 pub(crate) trait DivInt:
