@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Firmware checks (issue 8), deterministic, on emulated Cortex-M:
+# Firmware checks, deterministic, on emulated Cortex-M:
 #  (and the Cortex-M0 firmware on QEMU's microbit, 16 KB of RAM, band by band)
 #  1. builds the QEMU instruction-count plugin, the host reference renderer
 #     and the firmware for thumbv7em-none-eabihf (Cortex-M4F) and
