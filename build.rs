@@ -11,8 +11,11 @@
 //! 64 bits, where a 64-bit division is a library call: there
 //! [`division`]'s shared-divisor floors and reciprocals go without one.
 //!
-//! [`widening`]: src/widening.rs
-//! [`division`]: src/division.rs
+//! The kernel reads both only through [`platform`].
+//!
+//! [`widening`]: src/num/widening.rs
+//! [`division`]: src/num/division.rs
+//! [`platform`]: src/platform.rs
 fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div64)");

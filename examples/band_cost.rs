@@ -31,10 +31,11 @@ use fixshade::depth::{DepthBand, DepthBuffer};
 use fixshade::framebuffer::Framebuffer;
 use fixshade::illumination::{InfiniteViewer, LocalViewer};
 use fixshade::light::{
-    unit_from_f64, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight, WidePoint,
+    unit_from_f64, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight,
 };
 use fixshade::material::BlinnPhong;
 use fixshade::mesh::Mesh;
+use fixshade::num::WidePoint;
 use fixshade::render::CachedVertex;
 use fixshade::render::{Gouraud, PhongShading, RenderOptions, Renderer};
 use fixshade::scene_desc::{LightDesc, SceneDesc};

@@ -578,9 +578,6 @@ fn max3(e: &ErrorStats) -> String {
     format!("{}/{}/{}", e.max_error[0], e.max_error[1], e.max_error[2])
 }
 
-/// Issue 3's targets in instructions per frame (x86-64, release).
-const TARGETS: [(&str, f64); 3] = [("S1", 1.4e6), ("S2", 0.75e6), ("S3", 10e6)];
-
 fn markdown(rows: &[Row], args: &Args) -> String {
     let mut s = String::new();
     let w = &mut s;
@@ -651,6 +648,14 @@ fn markdown(rows: &[Row], args: &Args) -> String {
     let _ = writeln!(w, "## Table\n");
     let _ = writeln!(
         w,
+        "Instructions per frame: `valgrind --tool=callgrind`, x86-64, `--release`, one \
+         frame counted inside one `#[inline(never)]` function (a kernel frame after an \
+         uncounted warm-up frame): deterministic, so it compares across noisy machines \
+         (n/a where valgrind is missing). The kernel's speed on the devices is counted on \
+         the Cortex-M cores by `scripts/firmware.sh` ([firmware.md](firmware.md)).\n"
+    );
+    let _ = writeln!(
+        w,
         "| scene | configuration | fixed-point max r/g/b | fixed-point mean | fixed-point exact | \
          coverage mismatches | depth ties | model steps | model max r/g/b | model mean | \
          model exact | total mean | median time (ms) | IQR p25–p75 (ms) | min–max (ms) | \
@@ -700,48 +705,6 @@ fn markdown(rows: &[Row], args: &Args) -> String {
             ms(r.time.min),
             ms(r.time.max),
             r.instructions.map_or("n/a".into(), mega),
-        );
-    }
-    let _ = writeln!(w);
-    let _ = writeln!(w, "## Instructions per frame against issue 3's targets\n");
-    let _ = writeln!(
-        w,
-        "`valgrind --tool=callgrind`, x86-64, `--release`, one frame (clear colour and \
-         depth, then draw) of the kernel without dithering: deterministic, so it compares \
-         across noisy machines. Counted inside one `#[inline(never)]` function, after a \
-         warm-up frame.\n"
-    );
-    let _ = writeln!(
-        w,
-        "| scene | mode | instructions/frame | target (issue 3) | within target |"
-    );
-    let _ = writeln!(w, "| --- | --- | ---: | ---: | --- |");
-    for r in rows
-        .iter()
-        .filter(|r| r.config.engine == Engine::Kernel { dither: false })
-    {
-        let target = TARGETS
-            .iter()
-            .find(|(n, _)| *n == r.config.scene && r.config.shading == Shading::Gouraud)
-            .map(|t| t.1);
-        let within = match (r.instructions, target) {
-            (Some(n), Some(t)) => {
-                if n as f64 <= t {
-                    "yes"
-                } else {
-                    "**no**"
-                }
-            }
-            _ => "—",
-        };
-        let _ = writeln!(
-            w,
-            "| {} | {} | {} | {} | {} |",
-            r.config.scene,
-            mode_name(r.config.shading),
-            r.instructions.map_or("n/a".into(), mega),
-            target.map_or("—".into(), |t| format!("{:.2} M", t / 1e6)),
-            within
         );
     }
     let _ = writeln!(w);

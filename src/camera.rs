@@ -6,8 +6,8 @@
 //! eye-space positions, which are `I8F24`, giving clip coordinates in
 //! `I40F24`: at most `2³¹ · 2⁷ ≈ 2³⁸` raw for a coefficient below 2⁷).
 
+use crate::num::widening::mul_i32;
 use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
-use crate::widening::mul_i32;
 
 /// Why a camera could not be built.
 ///

@@ -252,22 +252,9 @@ impl<'a> DepthBand<'a> {
 }
 
 /// Sets every depth of `buf` to the far value (65535).
-///
-/// A fill with the constant is a `memset` of 0xFF bytes, which glibc does
-/// with `rep stosb` for a buffer this size on x86-64: one instruction that
-/// valgrind counts once per byte (about 153 600 for a 320 × 240 buffer,
-/// 5.8 % of S1's count then). With the value hidden from the optimiser the
-/// fill is a vector loop, 16 bytes a store (14 400 instructions). Elsewhere
-/// (the Cortex-M, where `memset` stores words and a `u16` loop would store
-/// halfwords) the plain fill is kept. The saving is in what callgrind
-/// counts, not in time.
 #[inline]
 fn fill_far(buf: &mut [u16]) {
-    if cfg!(target_arch = "x86_64") {
-        buf.fill(core::hint::black_box(u16::MAX));
-    } else {
-        buf.fill(u16::MAX);
-    }
+    buf.fill(u16::MAX);
 }
 
 impl DepthTest for DepthBand<'_> {

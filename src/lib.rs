@@ -6,13 +6,14 @@ pub mod band;
 pub mod camera;
 pub mod color;
 pub mod depth;
-mod division;
 pub mod framebuffer;
 pub mod illumination;
 pub mod light;
 pub mod material;
 pub mod mesh;
 pub mod normalize;
+pub mod num;
+mod platform;
 pub mod rasterizer;
 pub mod render;
 #[cfg(feature = "reference")]
@@ -20,7 +21,6 @@ pub mod scene_kernel;
 pub mod span;
 pub mod specular_table;
 pub mod vector;
-mod widening;
 
 pub use color::{Rgb, Shade};
 pub use illumination::Lighting;

@@ -22,14 +22,15 @@
 //! surface are both represented well; the vector from a surface point to the
 //! light is formed in `i64` and normalised with its length.
 
-use fixed::types::{I40F24, U32F32};
+use fixed::types::U32F32;
 
 use crate::color::Rgb;
 use crate::illumination::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
 use crate::material::Specular;
 use crate::normalize::{normalize, normalize_len};
+use crate::num::{clamp_wide, step_wide, MiniFloat, WidePoint};
 use crate::specular_table::{pow_from_delta, Exponent};
-use crate::vector::{FormatError, Mat4, Unit3, Vec3, COORD_FRAC};
+use crate::vector::{FormatError, Mat4, Unit3, COORD_FRAC};
 
 /// Why a light could not be built.
 ///
@@ -78,108 +79,6 @@ impl core::fmt::Display for LightError {
     }
 }
 
-/// A point (or displacement) with `I40F24` components: range ±2³⁸ (about
-/// ±2.7·10¹¹), resolution 2⁻²⁴. Used for light positions.
-///
-/// ```
-/// use fixshade::light::WidePoint;
-/// let p = WidePoint::from_f32([1e4, 0.0, -2.5]).unwrap();
-/// assert_eq!(p.to_bits()[2], -(5 << 23));
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct WidePoint {
-    c: [i64; 3],
-}
-
-/// The largest magnitude of a [`WidePoint`] component in raw units: 2⁶²
-/// (2³⁸ ≈ 2.7·10¹¹ in value), so a difference of two stays below 2⁶³.
-const WIDE_LIMIT: i64 = 1 << 62;
-
-impl WidePoint {
-    /// From raw `I40F24` bits, each clamped to ±2⁶² (±2³⁸ in value).
-    ///
-    /// ```
-    /// use fixshade::light::WidePoint;
-    /// let p = WidePoint::from_bits(i64::MAX, -5, i64::MIN);
-    /// assert_eq!(p.to_bits(), [1 << 62, -5, -(1 << 62)]);
-    /// ```
-    pub const fn from_bits(x: i64, y: i64, z: i64) -> Self {
-        const fn cl(v: i64) -> i64 {
-            if v > WIDE_LIMIT {
-                WIDE_LIMIT
-            } else if v < -(WIDE_LIMIT) {
-                -(WIDE_LIMIT)
-            } else {
-                v
-            }
-        }
-        WidePoint {
-            c: [cl(x), cl(y), cl(z)],
-        }
-    }
-
-    /// From floats; NaN/∞ and magnitudes of 2³⁸ or more are errors.
-    ///
-    /// ```
-    /// use fixshade::light::WidePoint;
-    /// use fixshade::vector::FormatError;
-    /// let p = WidePoint::from_f32([1.5, -0.25, 65536.0]).unwrap();
-    /// assert_eq!(p.to_bits(), [3 << 23, -(1 << 22), 1 << 40]);
-    /// assert_eq!(WidePoint::from_f32([0.0, 0.0, 3.0e11]), Err(FormatError::OutOfRange));
-    /// assert_eq!(WidePoint::from_f32([f32::INFINITY, 0.0, 0.0]), Err(FormatError::NotFinite));
-    /// ```
-    pub fn from_f32(v: [f32; 3]) -> Result<Self, FormatError> {
-        WidePoint::from_f64(v.map(f64::from))
-    }
-
-    /// As [`WidePoint::from_f32`], from `f64`s.
-    ///
-    /// ```
-    /// use fixshade::light::WidePoint;
-    /// use fixshade::vector::FormatError;
-    /// let limit = (1u64 << 38) as f64;
-    /// let edge = WidePoint::from_f64([limit - 1.0, 0.0, 0.0]).unwrap();
-    /// assert_eq!(edge.to_bits()[0], (1 << 62) - (1 << 24));
-    /// assert_eq!(WidePoint::from_f64([0.0, -limit, 0.0]), Err(FormatError::OutOfRange));
-    /// ```
-    pub fn from_f64(v: [f64; 3]) -> Result<Self, FormatError> {
-        let mut c = [0i64; 3];
-        for (o, x) in c.iter_mut().zip(v) {
-            if !x.is_finite() {
-                return Err(FormatError::NotFinite);
-            }
-            if x.abs() >= (1u64 << 38) as f64 {
-                return Err(FormatError::OutOfRange);
-            }
-            *o = I40F24::from_num(x).to_bits();
-        }
-        Ok(WidePoint { c })
-    }
-
-    /// From a [`Vec3`] (always fits).
-    ///
-    /// ```
-    /// use fixshade::light::WidePoint;
-    /// use fixshade::Vec3;
-    /// let p = WidePoint::from_vec3(Vec3::from_f32(1.0, -2.0, 0.5).unwrap());
-    /// assert_eq!(p, WidePoint::from_f32([1.0, -2.0, 0.5]).unwrap());
-    /// // Same 24 fraction bits: the raw value carries over unchanged.
-    /// let min = WidePoint::from_vec3(Vec3::from_bits(i32::MIN, 0, 0));
-    /// assert_eq!(min.to_bits(), [i32::MIN as i64, 0, 0]);
-    /// ```
-    pub const fn from_vec3(v: Vec3) -> Self {
-        let b = v.to_bits();
-        WidePoint {
-            c: [b[0] as i64, b[1] as i64, b[2] as i64],
-        }
-    }
-
-    /// Raw `I40F24` bits.
-    pub const fn to_bits(self) -> [i64; 3] {
-        self.c
-    }
-}
-
 /// `view · p` for a point (w = 1), `p` and the result in `I40F24` raw units.
 /// Products of an `I8F24` entry (< 2³¹) and a coordinate (< 2⁶³) need
 /// `i128`; done once per light per frame.
@@ -195,7 +94,7 @@ fn point_to_eye(view: &Mat4, p: [i64; 3], w: bool) -> [i64; 3] {
             acc += (m[3] as i128) << COORD_FRAC;
         }
         let v = (acc + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
-        *o = v.clamp(-(WIDE_LIMIT) as i128, (WIDE_LIMIT) as i128) as i64;
+        *o = clamp_wide(v);
     }
     out
 }
@@ -369,211 +268,6 @@ impl Attenuation {
         Ok(Attenuation {
             c: [f(c0)?, f(c1)?, f(c2)?],
         })
-    }
-}
-
-/// A small unsigned float for the attenuation polynomial, whose terms span
-/// 10⁻¹² to 10²⁰: value = `m · 2^e`, `m` normalised to [2³¹, 2³²) or 0.
-///
-/// The exponent stays in [`MiniFloat::E_MIN`, `MiniFloat::E_MAX`] =
-/// [−2²⁹, 2²⁹] (the attenuation uses −111 to 80), so the sum of two
-/// exponents plus 32 in [`MiniFloat::mul`] is within ±(2³⁰ + 32): no
-/// overflow in `i32`. At the ends ([`MiniFloat::from_u64`] with an extreme
-/// `frac`, long chains of products) a value whose exponent would pass
-/// `E_MAX` saturates to the largest value (`m = 2³² − 1`, `e = E_MAX`), and
-/// one whose exponent would fall below `E_MIN` flushes to zero; both are
-/// far beyond what [`MiniFloat::to_q32_saturating`] distinguishes
-/// (`u64::MAX` and 0).
-///
-/// ```
-/// use fixshade::light::MiniFloat;
-/// let huge = MiniFloat::from_u64(1, -i32::MAX);
-/// assert_eq!(huge, MiniFloat::MAX);
-/// assert_eq!(huge.mul(huge).to_q32_saturating(), u64::MAX);
-/// let tiny = MiniFloat::from_u64(1, i32::MAX);
-/// assert_eq!(tiny, MiniFloat::ZERO);
-/// assert_eq!(MiniFloat::from_u64(3, 1).to_q32_saturating(), 3 << 31); // 1.5
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MiniFloat {
-    m: u32,
-    e: i32,
-}
-
-impl MiniFloat {
-    /// The smallest exponent: values below `2^(E_MIN + 31)` flush to zero.
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// // 1 · 2^-frac: 2^(E_MIN + 31) is the smallest value kept, half of it flushes.
-    /// let frac = -MiniFloat::E_MIN - 31;
-    /// assert_ne!(MiniFloat::from_u64(1, frac), MiniFloat::ZERO);
-    /// assert_eq!(MiniFloat::from_u64(1, frac + 1), MiniFloat::ZERO);
-    /// ```
-    pub const E_MIN: i32 = -(1 << 29);
-    /// The largest exponent: values of `2^(E_MAX + 32)` or more saturate
-    /// to [`MiniFloat::MAX`].
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// // 1 · 2^-frac: 2^(E_MAX + 31) is kept, 2^(E_MAX + 32) saturates.
-    /// assert_ne!(MiniFloat::from_u64(1, -MiniFloat::E_MAX - 31), MiniFloat::MAX);
-    /// assert_eq!(MiniFloat::from_u64(1, -MiniFloat::E_MAX - 32), MiniFloat::MAX);
-    /// ```
-    pub const E_MAX: i32 = 1 << 29;
-    /// Zero.
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// assert_eq!(MiniFloat::from_u64(0, 7), MiniFloat::ZERO);
-    /// assert_eq!(MiniFloat::from_u64(3, 0).mul(MiniFloat::ZERO), MiniFloat::ZERO);
-    /// assert_eq!(MiniFloat::ZERO.to_q32_saturating(), 0);
-    /// ```
-    pub const ZERO: MiniFloat = MiniFloat { m: 0, e: 0 };
-    /// The largest value, `(2³² − 1) · 2^E_MAX`.
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// let one = MiniFloat::from_u64(1, 0);
-    /// assert_eq!(MiniFloat::MAX.mul(one), MiniFloat::MAX);
-    /// assert_eq!(MiniFloat::MAX.mul(MiniFloat::MAX), MiniFloat::MAX);
-    /// assert_eq!(MiniFloat::MAX.to_q32_saturating(), u64::MAX);
-    /// ```
-    pub const MAX: MiniFloat = MiniFloat {
-        m: u32::MAX,
-        e: MiniFloat::E_MAX,
-    };
-
-    /// `m · 2^e` for a normalised `m` (or 0) and an exponent `e` known to
-    /// lie within ±(2³⁰ + 32): saturated above [`MiniFloat::E_MAX`],
-    /// flushed to zero below [`MiniFloat::E_MIN`].
-    #[inline(always)]
-    const fn clamped(m: u32, e: i32) -> MiniFloat {
-        if e > MiniFloat::E_MAX {
-            MiniFloat::MAX
-        } else if e < MiniFloat::E_MIN {
-            MiniFloat::ZERO
-        } else {
-            MiniFloat { m, e }
-        }
-    }
-
-    /// `v · 2^-frac`, truncated to 32 significant bits; saturated or
-    /// flushed to zero where the exponent leaves [`MiniFloat::E_MIN`,
-    /// `MiniFloat::E_MAX`] (any `frac` is accepted).
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// assert_eq!(MiniFloat::from_u64(5, 32).to_q32_saturating(), 5); // 5 · 2⁻³²
-    /// // Only the top 32 significant bits of `v` are kept (truncated).
-    /// assert_eq!(MiniFloat::from_u64(u64::MAX, 32).to_q32_saturating(), u64::MAX << 32);
-    /// // Any `frac`: far out of range saturates (or flushes to zero).
-    /// assert_eq!(MiniFloat::from_u64(7, i32::MIN), MiniFloat::MAX);
-    /// ```
-    pub const fn from_u64(v: u64, frac: i32) -> MiniFloat {
-        let (m, lz) = MiniFloat::normalise(v);
-        if m == 0 {
-            return MiniFloat::ZERO;
-        }
-        // 32 − lz ∈ [−31, 32]; the saturating difference is then clamped
-        // to [E_MIN, E_MAX], which are far inside i32.
-        MiniFloat::clamped(m, (32 - lz).saturating_sub(frac))
-    }
-
-    /// [`MiniFloat::from_u64`] for `|frac| ≤ 64`, without the clamp: the
-    /// exponent `32 − lz − frac` is within [−95, 96], inside `E_MIN ..=
-    /// E_MAX`. For the attenuation.
-    #[inline(always)]
-    const fn from_u64_small_frac(v: u64, frac: i32) -> MiniFloat {
-        let (m, lz) = MiniFloat::normalise(v);
-        if m == 0 {
-            return MiniFloat::ZERO;
-        }
-        MiniFloat {
-            m,
-            e: 32 - lz - frac,
-        }
-    }
-
-    /// The top 32 significant bits of `v` (0 for `v = 0`) and its leading
-    /// zeros (in [0, 63] for `v ≠ 0`).
-    #[inline(always)]
-    const fn normalise(v: u64) -> (u32, i32) {
-        if v == 0 {
-            return (0, 0);
-        }
-        let lz = v.leading_zeros();
-        (((v << lz) >> 32) as u32, lz as i32)
-    }
-
-    /// The product, truncated to 32 significant bits (one 32 × 32 → 64
-    /// multiply); saturated or flushed to zero where the exponent leaves
-    /// [`MiniFloat::E_MIN`, `MiniFloat::E_MAX`].
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// let (a, b) = (MiniFloat::from_u64(3, 1), MiniFloat::from_u64(5, 1)); // 1.5, 2.5
-    /// assert_eq!(a.mul(b).to_q32_saturating(), 15 << 30); // 3.75
-    /// // A product below 2^(E_MIN + 31) flushes to zero.
-    /// let small = MiniFloat::from_u64(1, 1 << 28); // 2^-(2²⁸)
-    /// assert_ne!(small, MiniFloat::ZERO);
-    /// assert_eq!(small.mul(small), MiniFloat::ZERO);
-    /// ```
-    #[inline]
-    pub const fn mul(self, o: MiniFloat) -> MiniFloat {
-        let (m, e) = self.mul_parts(o);
-        MiniFloat::clamped(m, e)
-    }
-
-    /// [`MiniFloat::mul`] without the clamp, for factors whose product's
-    /// exponent is known to lie within `E_MIN ..= E_MAX` (the
-    /// attenuation's: all its exponents are within [−111, 80]).
-    #[inline(always)]
-    const fn mul_in_range(self, o: MiniFloat) -> MiniFloat {
-        let (m, e) = self.mul_parts(o);
-        MiniFloat { m, e }
-    }
-
-    /// The product's mantissa and exponent, unclamped (0 and 0 for zero).
-    /// Both exponents are within ±2²⁹, so the sums are within ±(2³⁰ + 32).
-    #[inline(always)]
-    const fn mul_parts(self, o: MiniFloat) -> (u32, i32) {
-        if self.m == 0 || o.m == 0 {
-            return (0, 0);
-        }
-        let p = self.m as u64 * o.m as u64; // in [2^62, 2^64)
-        if p >> 63 == 1 {
-            ((p >> 32) as u32, self.e + o.e + 32)
-        } else {
-            ((p >> 31) as u32, self.e + o.e + 31)
-        }
-    }
-
-    /// The value in `Q.32`, saturating at `u64::MAX`.
-    ///
-    /// ```
-    /// use fixshade::light::MiniFloat;
-    /// assert_eq!(MiniFloat::from_u64(1, 0).to_q32_saturating(), 1 << 32);
-    /// assert_eq!(MiniFloat::from_u64(1, -31).to_q32_saturating(), 1 << 63); // 2³¹
-    /// assert_eq!(MiniFloat::from_u64(1, -32).to_q32_saturating(), u64::MAX); // 2³² saturates
-    /// assert_eq!(MiniFloat::from_u64(1, 33).to_q32_saturating(), 0); // 2⁻³³ truncates to 0
-    /// ```
-    #[inline]
-    pub const fn to_q32_saturating(self) -> u64 {
-        if self.m == 0 {
-            return 0;
-        }
-        // e ≤ E_MAX = 2^29: no overflow.
-        let s = self.e + 32;
-        if s > 32 {
-            u64::MAX
-        } else if s >= 0 {
-            (self.m as u64) << s
-        } else if s > -64 {
-            (self.m as u64) >> (-s)
-        } else {
-            0
-        }
     }
 }
 
@@ -837,7 +531,8 @@ impl PointLight<Attenuation> {
     /// A white light at `position` with attenuation `(1, 0, 0)`.
     ///
     /// ```
-    /// use fixshade::light::{Attenuation, LightError, PointLight, WidePoint};
+    /// use fixshade::light::{Attenuation, LightError, PointLight};
+    /// use fixshade::num::WidePoint;
     /// let lamp = PointLight::new([0.0, 2.0, 1.0]).unwrap();
     /// assert_eq!(lamp.position, WidePoint::from_f32([0.0, 2.0, 1.0]).unwrap());
     /// assert_eq!(lamp.attenuation, Attenuation::NONE);
@@ -1245,7 +940,8 @@ impl AreaLight<Attenuation> {
     /// A white area light, attenuation `(1, 0, 0)`.
     ///
     /// ```
-    /// use fixshade::light::{AreaLight, LightError, WidePoint};
+    /// use fixshade::light::{AreaLight, LightError};
+    /// use fixshade::num::WidePoint;
     /// use fixshade::Rgb;
     /// let panel = AreaLight::new([0.0, 3.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 1.0], 4).unwrap();
     /// assert_eq!(panel.edge_u, WidePoint::from_f32([2.0, 0.0, 0.0]).unwrap());
@@ -1370,7 +1066,7 @@ impl<A: Falloff> LightSet for AreaLight<A> {
             let d = 2 * k as i128;
             let x = (1 - k as i128) * (u[i] as i128 + v[i] as i128);
             let off = (x + x.signum() * d / 2) / d;
-            (c[i] as i128 + off).clamp(-(WIDE_LIMIT as i128), WIDE_LIMIT as i128) as i64
+            clamp_wide(c[i] as i128 + off)
         });
         PreparedArea {
             first,
@@ -1383,15 +1079,6 @@ impl<A: Falloff> LightSet for AreaLight<A> {
             att: self.attenuation.prepare(),
         }
     }
-}
-
-/// The next sample coordinate of an area light, clamped to the
-/// [`WidePoint`] range (`|x|, |step| ≤ 2⁶²`, so the saturating sum cannot
-/// wrap). Samples of a light inside the range are exact; one reaching past
-/// it is clamped, as light positions are.
-#[inline(always)]
-fn step_wide(x: i64, step: i64) -> i64 {
-    x.saturating_add(step).clamp(-WIDE_LIMIT, WIDE_LIMIT)
 }
 
 impl<A: Falloff> PreparedLights for PreparedArea<A> {

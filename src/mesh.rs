@@ -56,6 +56,7 @@
 //! ```
 
 use crate::normalize::normalize_len;
+use crate::platform;
 use crate::vector::{sat_shift24, Mat4, Unit3, Vec3, COORD_FRAC};
 
 /// Why a mesh cannot be drawn or read.
@@ -635,7 +636,7 @@ impl<'a> Mesh<'a> {
         if bytes.as_ptr() as usize % 2 != 0 {
             return Err(MeshError::Misaligned);
         }
-        if cfg!(target_endian = "big") {
+        if !platform::little_endian() {
             return Err(MeshError::BigEndianTarget);
         }
         // needed == len: every count below fits `usize` and every array

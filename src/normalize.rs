@@ -66,8 +66,8 @@
 //! (callers that want the [`Unit3::ZERO`] convention write
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
+use crate::num::widening::mul_hi32;
 use crate::vector::{Unit3, UNIT_ONE};
-use crate::widening::mul_hi32;
 
 /// `round((1/√X_k − c_k)·2¹⁵)` at the nodes `X_k = ¼ + k/64`, `k = 0..=48`,
 /// where `c_k = f''(X_k)·(1/64)²/16` lowers each node by half the chord error

@@ -35,8 +35,8 @@
 //! (`i128`); spans step from there. Within a target of at most 2¹³ pixels
 //! a side the stepping error stays below 2⁻⁴ of the attribute's unit.
 
-use crate::division::{floor_div, recip63};
-use crate::widening::{mul_by_narrow, mul_by_small, mul_i32_u16, mul_narrow, mul_u32};
+use crate::num::division::{floor_div, recip63};
+use crate::num::widening::{mul_by_narrow, mul_by_small, mul_i32_u16, mul_narrow, mul_u32};
 
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
 ///

@@ -55,13 +55,14 @@ use crate::camera::{Camera, CameraError, ProjectionCoeffs};
 use crate::color::{Rgb, Shade};
 use crate::depth::DepthTest;
 pub use crate::depth::NoDepth;
-use crate::division::{floor_div, floor_div_all};
 use crate::framebuffer::Framebuffer;
 use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
+use crate::num::division::{floor_div, floor_div_all};
+use crate::num::widening::{mul_by_narrow, mul_narrow};
 use crate::rasterizer::{
     coverage, ClipRect, Cover, Facing, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
 };
@@ -70,7 +71,6 @@ use crate::span::{
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
 };
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
-use crate::widening::{mul_by_narrow, mul_narrow};
 
 /// Which shading mode a type selects.
 ///
@@ -1222,7 +1222,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             mul_by_narrow(-2 * c[1], hh) + w,
             c[2] * (1 << 24) - c[2] * (1 << 8),
         ];
-        let [x, y, z] = if cfg!(fixshade_soft_div64) {
+        let [x, y, z] = if crate::platform::SOFT_DIV64 {
             floor_div_all(n, 2 * w)
         } else {
             // (Each division written out: as an array map, x86-64 took

@@ -30,11 +30,12 @@ use crate::illumination::{InfiniteViewer, LocalViewer, Viewer};
 use crate::light::LightSet;
 use crate::light::{
     unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightError, PointLight,
-    SpotCone, SpotLight, WidePoint,
+    SpotCone, SpotLight,
 };
 use crate::material::{BlinnPhong, Material, Phong, Specular};
 use crate::mesh::{Mesh, MeshError};
 use crate::mesh_convert::{ConvertError, MeshData};
+use crate::num::WidePoint;
 use crate::render::{
     CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer,
     ShadingMode,

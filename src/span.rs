@@ -53,6 +53,7 @@ use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::normalize::normalize;
+use crate::platform;
 use crate::vector::{Unit3, Vec3};
 
 /// Where a span's pixels go.
@@ -465,7 +466,7 @@ pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
 /// shifts-and-adds by `1 + 2¹⁶ + 2³²` get folded back into one).
 #[inline(always)]
 fn pixel_of(acc: u64) -> u16 {
-    if cfg!(target_pointer_width = "64") {
+    if platform::wide_pointer() {
         pixel_by_multiply(acc)
     } else {
         pixel_by_halves(acc)
@@ -500,7 +501,7 @@ fn pixel_by_halves(acc: u64) -> u16 {
 /// from code layout.)
 #[inline]
 fn span_end(c: i64, d: i64, last: i64) -> Option<i64> {
-    if cfg!(target_pointer_width = "64") {
+    if platform::wide_pointer() {
         return d.checked_mul(last)?.checked_add(c);
     }
     if d.unsigned_abs() > 1 << 40 || last >= 1 << 20 || c.unsigned_abs() > 1 << 62 {
@@ -652,38 +653,11 @@ fn lane(v: [i32; 3]) -> [i32; 3] {
     [r(v[0], 16, 5), r(v[1], 32, 6), r(v[2], 16, 5)]
 }
 
-/// Two pixels from the three lane words: the low half is the first.
+/// Two pixels from the three lane words: the low half is the first (in
+/// assembly on ARMv7-M, see [`platform::pack_565_pair`]).
 #[inline(always)]
 fn pair_of(l: [u32; 3]) -> u32 {
-    // On ARMv7-M the same word as `(r & 0xF800F800) | ((g & 0xFC00FC00) >>
-    // 5) | ((b & 0xF800F800) >> 11)`: every mask is an immediate there, and
-    // the shifts ride on the `orr`s. LLVM rewrites that expression into the
-    // form below, whose two masks take two registers in the span loop.
-    #[cfg(all(target_arch = "arm", target_has_atomic = "32"))]
-    {
-        let w: u32;
-        // SAFETY: register arithmetic only.
-        unsafe {
-            core::arch::asm!(
-                "and {t}, {g}, #0xFC00FC00",
-                "and {w}, {r}, #0xF800F800",
-                "orr {w}, {w}, {t}, lsr #5",
-                "and {t}, {b}, #0xF800F800",
-                "orr {w}, {w}, {t}, lsr #11",
-                r = in(reg) l[0],
-                g = in(reg) l[1],
-                b = in(reg) l[2],
-                w = out(reg) w,
-                t = out(reg) _,
-                options(pure, nomem, nostack, preserves_flags),
-            );
-        }
-        w
-    }
-    #[cfg(not(all(target_arch = "arm", target_has_atomic = "32")))]
-    {
-        (l[0] & 0xF800_F800) | ((l[1] >> 5) & 0x07E0_07E0) | ((l[2] >> 11) & 0x001F_001F)
-    }
+    platform::pack_565_pair(l[0], l[1], l[2])
 }
 
 #[inline(always)]
@@ -850,14 +824,12 @@ impl PairGouraud {
 ///
 /// On ARMv7-M two pairs per iteration (with [`pair_of`]'s masks as
 /// immediates: 10 instructions per pair against 11 for one pair per
-/// iteration), and an empty assembly statement (no instruction) in the
-/// loop: LLVM does not runtime-unroll a loop that holds one, and unrolled
+/// iteration), kept at two by [`platform::keep_loop_rolled`]: unrolled
 /// further, this loop spills its lanes. A whole block (a constant length)
 /// is unrolled completely. QEMU count of the Cortex-M4 build, S2 (a
 /// full-screen quad): `fill_row` 5.6 instructions per pixel, block and row
 /// overheads included (7.0 with one pair per iteration and a loop per
-/// block). `target_has_atomic = "32"` is the stable cfg that tells ARMv7-M
-/// from ARMv6-M. Elsewhere one pair per iteration, which LLVM unrolls or
+/// block). Elsewhere one pair per iteration, which LLVM unrolls or
 /// vectorises (the Cortex-M0+ and x86-64 do better that way).
 #[inline(always)]
 fn run_pairs(
@@ -867,8 +839,7 @@ fn run_pairs(
     f: &mut impl FnMut(&mut [u16], u32),
 ) -> [u32; 3] {
     let mut l = l;
-    #[cfg(all(target_arch = "arm", target_has_atomic = "32"))]
-    let row = {
+    let row = if platform::armv7m() {
         let mut quads = row.chunks_exact_mut(4);
         for q in &mut quads {
             let (p0, p1) = q.split_at_mut(2);
@@ -878,9 +849,11 @@ fn run_pairs(
             l = add_lanes(l, s);
             f(p0, w0);
             f(p1, w1);
-            core::hint::black_box(());
+            platform::keep_loop_rolled();
         }
         quads.into_remainder()
+    } else {
+        row
     };
     for p in row.chunks_exact_mut(2) {
         f(p, pair_of(l));

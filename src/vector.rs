@@ -27,7 +27,7 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
-use crate::widening::{mul_i32, mul_i32_i16};
+use crate::num::widening::{mul_i32, mul_i32_i16};
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].

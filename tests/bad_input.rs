@@ -21,10 +21,11 @@ use fixshade::framebuffer::Framebuffer;
 use fixshade::illumination::InfiniteViewer;
 use fixshade::light::{
     unit_from_f32, unit_from_f64, AreaLight, Attenuation, DirectionalLight, LightError, PointLight,
-    SpotCone, SpotLight, WidePoint,
+    SpotCone, SpotLight,
 };
 use fixshade::material::NoSpecular;
 use fixshade::mesh::{face_normal, vertex_normals, Bounds, Mesh, MeshError, PackedNormal};
+use fixshade::num::WidePoint;
 use fixshade::render::{
     CachedVertex, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions, Renderer,
     MAX_TARGET_SIDE,
@@ -688,7 +689,7 @@ fn mini_model_mul(a: (u32, i64), b: (u32, i64)) -> (u32, i64) {
 /// the old formulas in `i64` on random inputs).
 #[test]
 fn minifloat_exponent_saturates() {
-    use fixshade::light::MiniFloat;
+    use fixshade::num::MiniFloat;
     assert_eq!(MiniFloat::from_u64(1, i32::MAX), MiniFloat::ZERO);
     assert_eq!(MiniFloat::from_u64(1, i32::MIN), MiniFloat::MAX);
     assert_eq!(MiniFloat::from_u64(u64::MAX, i32::MIN), MiniFloat::MAX);

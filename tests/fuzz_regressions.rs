@@ -48,8 +48,9 @@ fn crash_area_light_huge_edges() {
 #[test]
 fn area_light_at_the_range_limit() {
     use fixshade::illumination::LocalViewer;
-    use fixshade::light::{AreaLight, WidePoint};
+    use fixshade::light::AreaLight;
     use fixshade::material::BlinnPhong;
+    use fixshade::num::WidePoint;
     use fixshade::{Exponent, Lighting, Mat4, Material, Rgb, Unit3, Vec3};
     let big = 2.7e11; // below 2^38
     let m = Material::new().with_specular(BlinnPhong {

@@ -15,9 +15,10 @@ use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use fixshade::illumination::{InfiniteViewer, LocalViewer};
 use fixshade::light::{
     unit_from_f64, AnyLight, AreaLight, Attenuation, DirectionalLight, LightSet, PointLight,
-    SpotCone, SpotLight, WidePoint,
+    SpotCone, SpotLight,
 };
 use fixshade::material::{BlinnPhong, NoSpecular, Phong, Specular};
+use fixshade::num::WidePoint;
 use fixshade::reference::{eye_lights, illuminate, quantize_rgb565, EyeLight, LightingModel};
 use fixshade::scene_desc::{LightDesc, MaterialDesc, SpecularModel, Viewer, IDENTITY};
 use fixshade::{Exponent, Lighting, Mat4, Material, Rgb, Shade, Unit3, Vec3};

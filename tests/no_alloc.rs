@@ -1,4 +1,4 @@
-//! Issues 2 and 3: the kernel performs no heap allocation, neither when
+//! The kernel performs no heap allocation, neither when
 //! lighting a vertex nor when rendering a mesh.
 //!
 //! A counting global allocator wraps `System` and counts, per thread,

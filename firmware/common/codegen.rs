@@ -11,8 +11,9 @@ use std::fmt::Write;
 
 use fixshade::camera::Camera;
 use fixshade::color::{Rgb, Shade};
-use fixshade::light::{unit_from_f64, Attenuation, SpotCone, WidePoint};
+use fixshade::light::{unit_from_f64, Attenuation, SpotCone};
 use fixshade::mesh_convert::MeshData;
+use fixshade::num::WidePoint;
 use fixshade::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 use fixshade::{Exponent, Mat4, Unit3};
 
@@ -259,7 +260,9 @@ use fixshade::camera::{Camera, Projection};
 #[allow(unused_imports)]
 use fixshade::illumination::{InfiniteViewer, LocalViewer};
 #[allow(unused_imports)]
-use fixshade::light::{Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight, WidePoint};
+use fixshade::light::{Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight};
+#[allow(unused_imports)]
+use fixshade::num::WidePoint;
 #[allow(unused_imports)]
 use fixshade::material::{BlinnPhong, Phong};
 #[allow(unused_imports)]

@@ -31,11 +31,12 @@ use fixshade::depth::DepthBuffer;
 use fixshade::framebuffer::Framebuffer;
 use fixshade::illumination::{InfiniteViewer, LocalViewer, Viewer};
 use fixshade::light::{
-    AnyLight, AreaLight, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight, WidePoint,
+    AnyLight, AreaLight, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight,
 };
 use fixshade::material::{BlinnPhong, NoSpecular, Phong, Specular};
 use fixshade::mesh::{Bounds, Mesh, MeshError, PackedNormal};
 use fixshade::mesh_convert::MeshData;
+use fixshade::num::WidePoint;
 use fixshade::render::{
     CachedVertex, DrawStats, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions,
     Renderer, ShadingMode, MAX_TARGET_SIDE,

@@ -12,8 +12,8 @@
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
 //! Cortex-M4 (which divides only 32-bit numbers in hardware), in the QEMU
 //! counts of S1, where the window mapping's three per vertex were 14 % of
-//! the M0's frame. Where the build script sets `fixshade_soft_div64`
-//! (targets whose pointers are narrower than 64 bits), [`floor_div_all`]
+//! the M0's frame. Where [`platform::SOFT_DIV64`] holds (targets
+//! whose pointers are narrower than 64 bits), [`floor_div_all`]
 //! takes one reciprocal ([`recip63`]: a table, a Newton step and an exact
 //! remainder step, no division) and, per numerator, a 32 × 32 → 64-bit
 //! product and an exact remainder fix-up; the set-up's area reciprocal
@@ -24,7 +24,8 @@
 
 use core::ops::{Add, Div, Rem, Sub};
 
-use crate::widening::{mul_hi32, mul_u32};
+use crate::num::widening::{mul_hi32, mul_u32};
+use crate::platform;
 
 /// The operations [`floor_div`] needs: `i32` and `i64`.
 pub(crate) trait DivInt:
@@ -46,7 +47,7 @@ impl DivInt for i64 {}
 /// [`floor_div_rem`] (the same value).
 #[inline]
 pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         floor_div_shifted(a, b)
     } else {
         floor_div_rem(a, b)
@@ -99,7 +100,7 @@ const RECIP_NODES: [u32; 33] = {
 /// where not. For callers that correct the result exactly afterwards.
 #[inline(always)]
 fn mul_hi_approx(a: u32, b: u32) -> u32 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         mul_hi32(a, b)
     } else {
         (mul_u32(a, b) >> 32) as u32
@@ -197,11 +198,11 @@ pub(crate) const QUOTIENT_LIMIT: i64 = 1 << 31;
 /// `⌊nᵢ / d⌋` for each `nᵢ` and `1 ≤ d < 2³³` with `nᵢ − d` within `i64`
 /// ([`floor_div`]'s condition), exact where it lies within
 /// ±[`QUOTIENT_LIMIT`] and otherwise at or beyond that limit on the same
-/// side (callers clamp to a narrower range). On `fixshade_soft_div64`
-/// targets from one reciprocal ([`Divisor`]), else by [`floor_div`] each.
+/// side (callers clamp to a narrower range). Where
+/// [`platform::SOFT_DIV64`] holds from one reciprocal ([`Divisor`]), else by [`floor_div`] each.
 #[inline]
 pub(crate) fn floor_div_all<const N: usize>(n: [i64; N], d: i64) -> [i64; N] {
-    if cfg!(fixshade_soft_div64) {
+    if platform::SOFT_DIV64 {
         let by = Divisor::new(d as u64);
         n.map(|n| by.floor_sat(n))
     } else {

@@ -4,17 +4,19 @@
 //! instruction: `a as i64 * b as i64` is a call to `__aeabi_lmul`, a full
 //! 64 × 64-bit product of 37 instructions a call (QEMU count, S1). These
 //! functions build the same products from 16 × 16 → 32-bit multiplies (one
-//! `muls` each), inline, on those targets (the build script sets
-//! `fixshade_soft_mul64`), and are the plain product everywhere else. Both
+//! `muls` each), inline, on those targets
+//! ([`platform::SOFT_MUL64`]), and are the plain product everywhere else. Both
 //! forms are compiled on every target and the unit tests hold the limb
 //! forms to the plain products; CI also runs the whole test suite on the
 //! host with the limb forms (`RUSTFLAGS="--cfg fixshade_soft_mul64"`),
 //! where a debug build checks every call's operand ranges.
 
+use crate::platform;
+
 /// `a · b`, exactly (`|a · b| ≤ 2⁶²`).
 #[inline(always)]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         mul_i32_limbs(a, b)
     } else {
         a as i64 * b as i64
@@ -24,7 +26,7 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
 /// `a · b`, exactly (below 2⁶⁴).
 #[inline(always)]
 pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         mul_u32_limbs(a, b)
     } else {
         a as u64 * b as u64
@@ -37,7 +39,7 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
 /// the range).
 #[inline(always)]
 pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         debug_assert!(i32::try_from(a).is_ok() && i32::try_from(b).is_ok());
         mul_i32_limbs(a as i32, b as i32)
     } else {
@@ -49,7 +51,7 @@ pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
 /// debug build with `fixshade_soft_mul64` checks both).
 #[inline(always)]
 pub(crate) fn mul_by_narrow(a: i64, b: i64) -> i64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         debug_assert!(i32::try_from(b).is_ok());
         let p = mul_i64_i32_limbs(a, b as i32);
         debug_assert_eq!(Some(p), a.checked_mul(b));
@@ -90,7 +92,7 @@ pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
 /// elsewhere; a debug build with `fixshade_soft_mul64` checks the ranges).
 #[inline(always)]
 pub(crate) fn mul_by_small(a: i64, b: i64) -> i64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         debug_assert!(a.unsigned_abs() < 1 << 34 && b.unsigned_abs() <= 1 << 12);
         mul_by_small_limbs(a, b as i32)
     } else {
@@ -111,7 +113,7 @@ pub(crate) fn mul_by_small_limbs(a: i64, b: i32) -> i64 {
 /// `i32` (the plain product elsewhere).
 #[inline(always)]
 pub(crate) fn mul_i32_i16(a: i32, b: i16) -> i64 {
-    if cfg!(fixshade_soft_mul64) {
+    if platform::SOFT_MUL64 {
         mul_i32_i16_limbs(a, b)
     } else {
         a as i64 * b as i64
