@@ -539,7 +539,7 @@ impl Edge {
 
 /// `1 / area` as a 32-bit mantissa and a shift: `1/a ≈ m / 2^sh`.
 #[derive(Clone, Copy, Debug)]
-struct Recip {
+pub(crate) struct Recip {
     /// In `(2^31, 2^32]`.
     m: i64,
     sh: u32,
@@ -547,7 +547,7 @@ struct Recip {
 
 impl Recip {
     /// For `a > 0` (at most 2⁶⁰).
-    fn new(a: i64) -> Recip {
+    pub(crate) fn new(a: i64) -> Recip {
         let a = a as u64;
         let bits = 64 - a.leading_zeros();
         // a ≈ a32 · 2^e with a32 ∈ [2^31, 2^32).
@@ -577,7 +577,7 @@ impl Recip {
     /// the narrow form measured dearer: callgrind S1 +2.8 %.)
     #[cfg_attr(not(target_pointer_width = "64"), inline(always))]
     #[cfg_attr(target_pointer_width = "64", inline)]
-    fn div_i64(self, num: i64, up: u32) -> i128 {
+    pub(crate) fn div_i64(self, num: i64, up: u32) -> i128 {
         let sh = self.sh - up;
         if cfg!(target_pointer_width = "64") {
             self.div_i64_wide(num, up)
@@ -1222,28 +1222,6 @@ impl<'v, const N: usize> Triangle<'v, N> {
 }
 
 impl<const N: usize> Walk<N> {
-    /// The same walk with `M` attributes: the first `min(N, M)` kept, any
-    /// others zero (a band keeps every shading mode's walks in one store).
-    #[inline(always)]
-    pub(crate) fn resize<const M: usize>(self) -> Walk<M> {
-        let fit = |a: [i64; N]| core::array::from_fn(|i| if i < N { a[i] } else { 0 });
-        Walk {
-            left: self.left,
-            right: self.right,
-            next: self.next,
-            next_left: self.next_left,
-            switch: self.switch,
-            x_lo: self.x_lo,
-            x_hi: self.x_hi,
-            y: self.y,
-            y_end: self.y_end,
-            row: fit(self.row),
-            ddx: fit(self.ddx),
-            ddy: fit(self.ddy),
-            bounded: self.bounded,
-        }
-    }
-
     /// Draws the rows `rows.0 ..= rows.1` (a band) that the triangle has
     /// left, stepping over any before `rows.0` without drawing; returns the
     /// walk paused below `rows.1` if the triangle goes on below it.
