@@ -587,34 +587,37 @@ impl Job<'_, '_> {
                 width: w,
                 y0: b0,
             };
-            for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
-                if hi < b0 || lo > b1 {
-                    continue;
+            frame.each_tile(|frame| {
+                for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
+                    if hi < b0 || lo > b1 {
+                        continue;
+                    }
+                    let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
+                    // The run's first 32 triangles by their set visibility
+                    // bits, the rest (a run longer than 32) all.
+                    let mut bits = self.visible[r];
+                    let first = core::iter::from_fn(move || {
+                        let j = bits.trailing_zeros() as usize;
+                        bits &= bits.wrapping_sub(1);
+                        (j < 32).then_some(j)
+                    });
+                    for j in first.chain(32..end - start) {
+                        let tri = indices[start + j];
+                        let idx = tri.map(|i| i as usize);
+                        let res = if !X::CACHED {
+                            band_triangle_recomputed::<M, _, _, _, _, _>(
+                                frame, idx, &mut sink, depth, stats,
+                            )
+                        } else {
+                            band_triangle_cached::<M, _, _, _, _, _>(
+                                frame, cache, idx, &mut sink, depth, stats,
+                            )
+                        };
+                        res.map_err(lift)?;
+                    }
                 }
-                let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
-                // The run's first 32 triangles by their set visibility
-                // bits, the rest (a run longer than 32) all.
-                let mut bits = self.visible[r];
-                let first = core::iter::from_fn(move || {
-                    let j = bits.trailing_zeros() as usize;
-                    bits &= bits.wrapping_sub(1);
-                    (j < 32).then_some(j)
-                });
-                for j in first.chain(32..end - start) {
-                    let tri = indices[start + j];
-                    let idx = tri.map(|i| i as usize);
-                    let res = if !X::CACHED {
-                        band_triangle_recomputed::<M, _, _, _, _, _>(
-                            frame, idx, &mut sink, depth, stats,
-                        )
-                    } else {
-                        band_triangle_cached::<M, _, _, _, _, _>(
-                            frame, cache, idx, &mut sink, depth, stats,
-                        )
-                    };
-                    res.map_err(lift)?;
-                }
-            }
+                Ok(())
+            })?;
             let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
             target
                 .fill_contiguous(

@@ -473,10 +473,28 @@ pub struct CachedVertex {
 /// let e = renderer.draw::<Gouraud, _, _>(&mesh, &mut Wide, &mut NoDepth, &mut cache);
 /// assert_eq!(e, Err(RenderError::TargetTooLarge));
 /// ```
-pub const MAX_TARGET_SIDE: u32 = 2032;
-// The viewport, measured from its centre pixel, lies inside the guard
-// band's clip planes with a pixel to spare (`Frame::guard_clip`).
-const _: () = assert!(8 * MAX_TARGET_SIDE as i32 + 32 <= setup::GUARD - 40);
+pub const MAX_TARGET_SIDE: u32 = 1 << 20;
+
+/// The largest side of a tile. A target wider or taller than this is drawn
+/// a tile at a time, each tile with the guard band around its own centre
+/// (whole pixels: a tile's columns and rows shift by integers); a smaller
+/// one is one tile. The grid is the viewport's, whatever rows a band
+/// draws, so bands and whole frames clip every triangle alike.
+const TILE: i32 = 2032;
+// A tile, measured from its centre pixel, lies inside the guard band's
+// clip planes with a pixel to spare (`Frame::guard_clip`).
+const _: () = assert!(8 * TILE + 32 <= setup::GUARD - 40);
+
+/// The tile of a viewport side `len` that holds pixel `at`: its first and
+/// last pixels and its centre pixel.
+fn tile(len: i32, at: i32) -> (i32, i32, i32) {
+    if len <= TILE {
+        (0, len - 1, len >> 1)
+    } else {
+        let lo = at - at % TILE;
+        (lo, (lo + TILE - 1).min(len - 1), lo + TILE / 2)
+    }
+}
 
 /// A frame's renderer: camera, model transform, prepared lighting and
 /// options.
@@ -759,22 +777,25 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         };
         // An empty target draws nothing (and has no aspect ratio).
         let modelview = self.mesh_modelview(mesh);
-        let Some(frame) = self.frame(mesh, &modelview, size)? else {
+        let Some(mut frame) = self.frame(mesh, &modelview, size)? else {
             return Ok(stats);
         };
         // Every vertex projected up front: a mesh's vertices are (nearly)
         // all used, and the triangle loop then tests no flag (callgrind,
         // S3 on x86-64: 0.17 M instructions a frame).
         frame.project_all(&mut cache[..n]);
-        for tri in mesh.indices {
-            let idx = tri.map(|i| i as usize);
-            let mut corners = CacheCorners {
-                cache,
-                slot: idx,
-                vertex: idx,
-            };
-            frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
-        }
+        frame.each_tile(|frame| {
+            for tri in mesh.indices {
+                let idx = tri.map(|i| i as usize);
+                let mut corners = CacheCorners {
+                    cache,
+                    slot: idx,
+                    vertex: idx,
+                };
+                frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
+            }
+            Ok(())
+        })?;
         Ok(stats)
     }
 
@@ -812,6 +833,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             h: h as i64,
             viewport,
             rows: (viewport.y0, viewport.y1),
+            cols: (viewport.x0, viewport.x1),
+            origin: (0, 0),
         }))
     }
 }
@@ -1020,8 +1043,13 @@ pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     /// The viewport: projection, window mapping and the attribute planes'
     /// anchor.
     pub(crate) viewport: ClipRect,
-    /// The rows drawn (all of the viewport's, or a band's).
+    /// The rows drawn (all of the viewport's, or a band's; within a tile
+    /// while [`Frame::each_tile`] runs).
     pub(crate) rows: (i32, i32),
+    /// The columns drawn: the tile's.
+    cols: (i32, i32),
+    /// The tile's centre in 1/16 pixel, the guard band's centre.
+    origin: (i64, i64),
 }
 
 /// Where a vertex of a near-clipped polygon comes from: an original vertex,
@@ -1379,7 +1407,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     front,
                     D::ENABLED,
                     stats,
-                    |s| widen(s),
+                    widen,
                     |sp, st| self.span_flat(sp, colour, plain, sink, depth, st, z_inside),
                 )
             }
@@ -1409,7 +1437,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     front,
                     D::ENABLED,
                     stats,
-                    |s| widen(s),
+                    widen,
                     |sp, st| self.span_gouraud(sp, sink, depth, st, z_inside),
                 )
             }
@@ -1524,7 +1552,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let c = self.viewport;
         // ⌈(m − 8)/16⌉ = (m + 7) >> 4, ⌊(m − 8)/16⌋ = (m − 8) >> 4 (arithmetic).
-        let (x_lo, x_hi) = (
+        let (u_lo, u_hi) = (
             ((minx + 7) >> 4).max(c.x0 as i64),
             ((maxx - 8) >> 4).min(c.x1 as i64),
         );
@@ -1532,32 +1560,54 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             ((miny + 7) >> 4).max(c.y0 as i64),
             ((maxy - 8) >> 4).min(c.y1 as i64),
         );
+        let (x_lo, x_hi) = (u_lo.max(self.cols.0 as i64), u_hi.min(self.cols.1 as i64));
         let (y_lo, y_hi) = (v_lo.max(self.rows.0 as i64), v_hi.min(self.rows.1 as i64));
         (x_lo <= x_hi && y_lo <= y_hi).then_some((
             (x_lo, x_hi),
             (y_lo, y_hi),
-            y_lo == v_lo && y_hi == v_hi,
+            y_lo == v_lo && y_hi == v_hi && x_lo == u_lo && x_hi == u_hi,
         ))
     }
 
     /// Whether window position `w` lies inside the guard band around the
-    /// viewport's centre (and, with a depth test, its depth attribute
+    /// tile's centre (and, with a depth test, its depth attribute
     /// inside the set-up's range): such a corner goes to the 32-bit set-up
     /// as it is.
     #[inline(always)]
     fn in_guard(&self, w: &[i64; 3], depth: bool) -> bool {
-        let (ox, oy) = self.guard_origin();
+        let (ox, oy) = self.origin;
         let g = setup::GUARD as u64;
         (w[0] - ox).unsigned_abs() <= g
             && (w[1] - oy).unsigned_abs() <= g
             && (!depth || w[2] < Z_GUARD)
     }
 
-    /// The guard band's centre in 1/16 pixel: the viewport's centre pixel
-    /// corner, a whole pixel so that columns and rows shift by integers.
-    #[inline(always)]
-    fn guard_origin(&self) -> (i64, i64) {
-        (16 * (self.w >> 1), 16 * (self.h >> 1))
+    /// Calls `f` with the frame limited to each tile ([`TILE`]) that the
+    /// rows drawn meet, in turn: one call for a target of at most
+    /// [`TILE`] pixels a side.
+    pub(crate) fn each_tile<E>(
+        &mut self,
+        mut f: impl FnMut(&Self) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let (rows, vp) = (self.rows, self.viewport);
+        let (w, h) = (self.w as i32, self.h as i32);
+        let mut y = rows.0;
+        let mut res = Ok(());
+        while y <= rows.1 && res.is_ok() {
+            let (_, y1, cy) = tile(h, y);
+            self.rows = (y, y1.min(rows.1));
+            let mut x = vp.x0;
+            while x <= vp.x1 && res.is_ok() {
+                let (_, x1, cx) = tile(w, x);
+                self.cols = (x, x1);
+                self.origin = (16 * cx as i64, 16 * cy as i64);
+                res = f(self);
+                x = x1 + 1;
+            }
+            y = y1 + 1;
+        }
+        self.rows = rows;
+        res
     }
 
     /// Clips polygon `p` (clip-space corners `c`) against the guard band's
@@ -1586,18 +1636,24 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         for k in 0..n {
             a[k] = (c[k], p[k]);
         }
-        // Guard planes `G·w ∓ 8W·x_c ≥ 0` (likewise y), with two pixels and
-        // the centre's half pixel to spare; `G·w < 2⁴⁶` and `8W·|x_c| <
-        // 2¹⁵·2³⁹` (`window`'s ranges): each distance fits `i64`.
+        // The guard planes `|x_w − o_x| ≤ G` (1/16 pixel, two pixels and
+        // a half to spare), with `x_w = S·x_c/w + S`, `S = 8W`:
+        // `(G + o_x − S)·w − S·x_c ≥ 0` and `(G − o_x + S)·w + S·x_c ≥ 0`;
+        // `y_w = S′ − S′·y_c/w` (`S′ = 8H`) likewise with `y_c` negated.
+        // `|G ± (o − S)| < 2²⁵` (`o`, `S` ≤ 2²⁴), `w ≤ 2³¹`, `S·|x_c| <
+        // 2²³·2³⁹` (`window`'s ranges): each distance is below
+        // 2⁶² + 2⁵⁶, in `i64`.
         let g = (setup::GUARD - 40) as i64;
         let (sx, sy) = (8 * self.w, 8 * self.h);
+        let (ox, oy) = self.origin;
+        let (px, mx, py, my) = (g + ox - sx, g - ox + sx, g + oy - sy, g - oy + sy);
         let planes = if depth { 5 } else { 4 };
         for plane in 0..planes {
             let dist = |q: &[i64; 4]| match plane {
-                0 => g * q[3] - sx * q[0],
-                1 => g * q[3] + sx * q[0],
-                2 => g * q[3] - sy * q[1],
-                3 => g * q[3] + sy * q[1],
+                0 => px * q[3] - sx * q[0],
+                1 => mx * q[3] + sx * q[0],
+                2 => my * q[3] - sy * q[1],
+                3 => py * q[3] + sy * q[1],
                 _ => 2 * q[3] - q[2],
             };
             let mut m = 0;
@@ -1646,14 +1702,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let num = di as i128 * o.0[3] as i128;
         let den = num - dout as i128 * i.0[3] as i128;
         let mut attr = i.1.attr;
-        for k in 0..N {
-            let x = (o.1.attr[k] - i.1.attr[k]) as i128 * num;
+        for (a, b) in attr.iter_mut().zip(o.1.attr) {
+            let x = (b - *a) as i128 * num;
             let r = if x >= 0 {
                 (2 * x + den) / (2 * den)
             } else {
                 -((-2 * x + den) / (2 * den))
             };
-            attr[k] += r as i64;
+            *a += r as i64;
         }
         attr[0] = w[2];
         (
@@ -1693,19 +1749,24 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 &clipped[..n]
             }
         };
-        let (ox, oy) = self.guard_origin();
+        let (ox, oy) = self.origin;
         let (cx, cy) = ((ox >> 4) as i32, (oy >> 4) as i32);
-        let vp = self.viewport;
-        let cols = (vp.x0 - cx, vp.x1 - cx);
+        let cols = (self.cols.0 - cx, self.cols.1 - cx);
         let rows = (self.rows.0 - cy, self.rows.1 - cy);
         let mut res = Ok(());
         for k in 1..poly.len().saturating_sub(1) {
             let v = [&poly[0], &poly[k], &poly[k + 1]].map(|p| {
                 debug_assert!(self.in_guard(&[p.x, p.y, p.attr[0]], depth));
+                let mut a = p.attr;
+                // Without a depth test the depth is not drawn, and not
+                // bounded by the guard band: left out of the set-up.
+                if !depth {
+                    a[0] = 0;
+                }
                 setup::Vertex {
                     x: (p.x - ox) as i32,
                     y: (p.y - oy) as i32,
-                    a: p.attr.map(|a| {
+                    a: a.map(|a| {
                         debug_assert!(a.unsigned_abs() <= setup::ATTR as u64);
                         a as i32
                     }),

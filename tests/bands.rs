@@ -142,6 +142,19 @@ fn s4_bands_equal_whole_frame() {
 }
 
 #[test]
+fn tiled_targets_equal_whole_frame() {
+    // Wider than a tile (2 032 pixels): drawn tile by tile, each with the
+    // guard band around its own centre; the quad's two triangles reach
+    // into all three tiles and are set up in each (clipped to its band, a
+    // triangle may be set up as more than one piece).
+    let (_, all) = check("S2 4100 × 40", &standard_scenes::s2(4100, 40));
+    assert!(all.drawn >= 2 * 3, "{all:?}");
+    assert_eq!(all.pixels, 4100 * 40);
+    // The sphere across the boundary of two tiles.
+    check("S1 4064 × 40", &standard_scenes::s1(4064, 40));
+}
+
+#[test]
 fn other_modes_and_sizes_equal_whole_frame() {
     // Flat and Gouraud bunny, Phong sphere, two-sided lighting without
     // culling, dithering, a floor crossing the near plane, odd sizes.
