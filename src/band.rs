@@ -10,11 +10,11 @@
 //! band's rectangle: one address window per band on an SPI display.
 //!
 //! # Identical pixels
-//! The viewport (projection, window mapping, the attribute planes' anchor)
-//! is the whole target's for every band; only the rows drawn change. The
-//! rasterizer starts a triangle's edges and rows at the band's first row
-//! exactly where the whole-frame walk is there
-//! ([`Triangle::setup_rows`](crate::rasterizer::Triangle::setup_rows)), the
+//! The viewport (projection, window mapping) and its tiles (the guard
+//! band's centres, where the attribute planes are anchored) are the whole
+//! target's for every band; only the rows drawn change. A triangle is set
+//! up again in each band it meets, with integer edges and planes that give
+//! each row the same span as the whole-frame walk (`src/setup.rs`); the
 //! triangles of a band are drawn in mesh order, and each pixel is drawn by
 //! exactly one band: the frame is bit for bit the whole-frame render
 //! (`tests/bands.rs` checks it on the standard scenes).

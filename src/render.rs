@@ -63,7 +63,9 @@ use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::num::division::{floor_div, floor_div_all};
 use crate::num::widening::{mul_by_narrow, mul_narrow};
-use crate::rasterizer::{coverage, ClipRect, Cover, RasterVertex, Span, COORD_LIMIT, DRIFT, TINY};
+use crate::rasterizer::{
+    coverage, ClipRect, Cover, RasterVertex, Span, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
+};
 use crate::setup;
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
@@ -480,10 +482,9 @@ pub const MAX_TARGET_SIDE: u32 = 1 << 20;
 /// (whole pixels: a tile's columns and rows shift by integers); a smaller
 /// one is one tile. The grid is the viewport's, whatever rows a band
 /// draws, so bands and whole frames clip every triangle alike.
-const TILE: i32 = 2032;
-// A tile, measured from its centre pixel, lies inside the guard band's
-// clip planes with a pixel to spare (`Frame::guard_clip`).
-const _: () = assert!(8 * TILE + 32 <= setup::GUARD - 40);
+/// (The rasterizer's clip rectangle limit: inside the guard band's clip
+/// planes with a pixel to spare, `Frame::guard_clip`.)
+const TILE: i32 = CLIP_LIMIT as i32;
 
 /// The tile of a viewport side `len` that holds pixel `at`: its first and
 /// last pixels and its centre pixel.
@@ -1380,8 +1381,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             Some(&clip_buf[..count])
         };
-        // Depth inside the u16 range, with the drift of a bounded span to
-        // spare, at every vertex: then on every pixel of a bounded span.
+        // Depth inside the u16 range, with a span's drift to spare, at
+        // every vertex: then on every pixel of every span.
         // The attribute is `z_w·65535·2⁸ + 2⁷` (`window`); in
         // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
         // cleared 65535, so the span needs no clamp.
@@ -1825,10 +1826,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// up); shorter ones one at a time ([`PackedGouraud`]). Which one a span
     /// takes depends on its length only, so bands and whole frames agree.
     ///
-    /// A bounded span (see [`DRIFT`]) needs no range check: vertex colours
-    /// are at least ½ LSB (2¹⁵) inside their fields, more than the drift
-    /// plus the pair shader's lane margin. Where the check is made, it
-    /// passes on such a span, so the pixels are the same.
+    /// Undithered spans need no range check: vertex colours are at least
+    /// ½ LSB (2¹⁵) inside their fields, more than a span's drift
+    /// ([`DRIFT`]) plus the pair shader's lane margin. Dithered ones are
+    /// clamped per pixel ([`ClampedGouraud`]).
     #[inline(always)]
     fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
@@ -1843,7 +1844,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let c = [s.start[1], s.start[2], s.start[3]];
         let d = [s.step[1], s.step[2], s.step[3]];
         let n = (s.x1 - s.x0 + 1) as u32;
-        if !dither && s.bounded {
+        if !dither {
             return if n >= PAIR_SPAN {
                 self.send(
                     s,
@@ -1864,24 +1865,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 )
             };
         }
-        if !dither && n >= PAIR_SPAN {
-            if let Some(sh) = PairGouraud::new(c, d, n) {
-                return self.send(s, sink, depth, stats, z_inside, sh);
-            }
-        }
-        match (dither, PackedGouraud::new(c, d, n)) {
-            (false, Some(sh)) => self.send(s, sink, depth, stats, z_inside, sh),
-            _ => {
-                let sh = ClampedGouraud {
-                    c,
-                    d,
-                    dither,
-                    x: s.x0,
-                    y: s.y,
-                };
-                self.send(s, sink, depth, stats, z_inside, sh)
-            }
-        }
+        let sh = ClampedGouraud {
+            c,
+            d,
+            dither,
+            x: s.x0,
+            y: s.y,
+        };
+        self.send(s, sink, depth, stats, z_inside, sh)
     }
 
     #[inline(always)]
@@ -1910,7 +1901,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
     /// One span through the depth test into the sink; `z_inside`: the
     /// triangle's vertex depths are at least [`DRIFT`] inside the `u16`
-    /// range (so a bounded span's depth is inside it).
+    /// range (so every span's depth is inside it).
     #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
@@ -1925,7 +1916,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let z = SpanDepth {
             z: s.start[0],
             dz: s.step[0],
-            inside: z_inside && s.bounded,
+            inside: z_inside,
         };
         let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
         stats.pixels = stats.pixels.saturating_add(w);
@@ -1933,19 +1924,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 }
 
-/// The set-up's span as the shaders take it (`i64` attributes; a span
-/// inside the guard band is bounded: the set-up's drift is below
-/// [`DRIFT`]).
+/// The set-up's span as the shaders take it (`i64` attributes).
 #[inline(always)]
 fn widen<const N: usize>(s: &setup::Span<N>) -> Span<N> {
-    const { assert!(setup::DRIFT as i64 <= DRIFT) };
     Span {
         y: s.y,
         x0: s.x0,
         x1: s.x1,
         start: s.start.map(i64::from),
         step: s.step.map(i64::from),
-        bounded: true,
     }
 }
 
