@@ -10,11 +10,11 @@
 //! band's rectangle: one address window per band on an SPI display.
 //!
 //! # Identical pixels
-//! The viewport (projection, window mapping, the attribute planes' anchor)
-//! is the whole target's for every band; only the rows drawn change. The
-//! rasterizer starts a triangle's edges and rows at the band's first row
-//! exactly where the whole-frame walk is there
-//! ([`Triangle::setup_rows`](crate::rasterizer::Triangle::setup_rows)), the
+//! The viewport (projection, window mapping) and its tiles (the guard
+//! band's centres, where the attribute planes are anchored) are the whole
+//! target's for every band; only the rows drawn change. A triangle is set
+//! up again in each band it meets, with integer edges and planes that give
+//! each row the same span as the whole-frame walk (`src/setup.rs`); the
 //! triangles of a band are drawn in mesh order, and each pixel is drawn by
 //! exactly one band: the frame is bit for bit the whole-frame render
 //! (`tests/bands.rs` checks it on the standard scenes).
@@ -39,23 +39,13 @@
 //! spheres, most scanned meshes) make this cheap; the worst case is every
 //! triangle tested in every band.
 //!
-//! # Resuming triangles
-//! With cached vertices, a triangle that goes on below a band is not set up
-//! again in the next one: the band keeps its paused walk (a
-//! [`Walk`]: edges, attribute values at the row,
-//! gradients) and the next band draws its rows from there, in the same
-//! mesh order, with the same spans. The store holds [`CARRY`] triangles;
-//! one that finds it full, a sliver, or a triangle that the near plane
-//! cuts into a quadrilateral (drawn as two pieces) is set up again in the
-//! next band instead (the same pixels, more work). [`DrawStats::carried`] counts the resumed triangles.
-//!
 //! # Memory
 //! The caller provides the colour band (`W × h` `u16`), the depth band
 //! (`W × h` `u16`, if the scene has a depth test) and, in cached mode, one
 //! [`BandVertex`] per mesh vertex. A draw call keeps the run table
-//! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack, and in
-//! cached mode the store of resumable triangles ([`CARRY`] × 352 bytes:
-//! 16.5 KB).
+//! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack; a
+//! triangle that spans several bands is set up again in each (the 32-bit
+//! set-up is exact row by row, so the pixels are the whole frame's).
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -69,12 +59,11 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::Mesh;
-use heapless::Deque;
 
-use crate::rasterizer::{area2, RasterVertex, Walk};
+use crate::rasterizer::{area2, RasterVertex};
 use crate::render::{
-    check_bounds, CacheCorners, CachedVertex, Carry, CarryExtra, Corners, DrawStats, Frame,
-    NoCarry, RenderError, Renderer, ShadingMode,
+    check_bounds, CacheCorners, CachedVertex, Corners, DrawStats, Frame, RenderError, Renderer,
+    ShadingMode,
 };
 use crate::span::BandSink;
 use crate::vector::{Unit3, Vec3};
@@ -539,26 +528,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             bounds: &bounds,
             visible: &visible,
         };
-        if X::CACHED {
-            let mut carry = CarryBuf {
-                q: Deque::new(),
-                incoming: 0,
-                tag: 0,
-            };
-            job.run::<M, X, _, _, _, _, _, _>(
-                &mut frame, cache, target, bands, depth, &mut stats, &mut carry,
-            )?;
-        } else {
-            job.run::<M, X, _, _, _, _, _, _>(
-                &mut frame,
-                cache,
-                target,
-                bands,
-                depth,
-                &mut stats,
-                &mut NoCarry,
-            )?;
-        }
+        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, target, bands, depth, &mut stats)?;
         Ok(stats)
     }
 }
@@ -576,12 +546,10 @@ struct Job<'a, 'm> {
 }
 
 impl Job<'_, '_> {
-    /// Renders the bands top to bottom and hands each to `target`; a
-    /// triangle left unfinished at a band's end is resumed from `carry`
-    /// in the next band if it kept it, and set up again if not.
+    /// Renders the bands top to bottom and hands each to `target`.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn run<M, X, T, D, K, S, V, L>(
+    fn run<M, X, T, D, S, V, L>(
         &self,
         frame: &mut Frame<'_, '_, S, V, L>,
         cache: &mut [BandVertex],
@@ -589,14 +557,12 @@ impl Job<'_, '_> {
         bands: &mut Bands,
         depth: &mut D,
         stats: &mut DrawStats,
-        carry: &mut K,
     ) -> Result<(), RenderError<T::Error>>
     where
         M: ShadingMode,
         X: VertexMode,
         T: DrawTarget<Color = Rgb565>,
         D: BandDepth,
-        K: BandCarry,
         S: Specular,
         V: Viewer,
         L: LightSet,
@@ -621,52 +587,37 @@ impl Job<'_, '_> {
                 width: w,
                 y0: b0,
             };
-            carry.start_band();
-            for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
-                if hi < b0 || lo > b1 {
-                    continue;
-                }
-                let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
-                // The run's first 32 triangles by their set visibility
-                // bits, the rest (a run longer than 32) all.
-                let mut bits = self.visible[r];
-                let first = core::iter::from_fn(move || {
-                    let j = bits.trailing_zeros() as usize;
-                    bits &= bits.wrapping_sub(1);
-                    (j < 32).then_some(j)
-                });
-                for j in first.chain(32..end - start) {
-                    let t = (start + j) as u32;
-                    let tri = indices[start + j];
-                    if K::ON {
-                        carry.set_tag(t);
-                        if let Some((walk, extra)) = carry.take(t) {
-                            // Drawn from its place in the store, then
-                            // dropped there; what goes on is kept anew.
-                            let rest = frame
-                                .resume::<M, _, _>(walk, extra, &mut sink, depth, stats)
-                                .map_err(lift)?;
-                            carry.drop_taken();
-                            if let Some(w) = rest {
-                                carry.put(w, extra);
-                            }
-                            continue;
-                        }
+            frame.each_tile(|frame| {
+                for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
+                    if hi < b0 || lo > b1 {
+                        continue;
                     }
-                    let idx = tri.map(|i| i as usize);
-                    let res = if !X::CACHED {
-                        band_triangle_recomputed::<M, _, _, _, _, _, _>(
-                            frame, idx, &mut sink, depth, stats, carry,
-                        )
-                    } else {
-                        band_triangle_cached::<M, _, _, _, _, _, _>(
-                            frame, cache, idx, &mut sink, depth, stats, carry,
-                        )
-                    };
-                    res.map_err(lift)?;
+                    let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
+                    // The run's first 32 triangles by their set visibility
+                    // bits, the rest (a run longer than 32) all.
+                    let mut bits = self.visible[r];
+                    let first = core::iter::from_fn(move || {
+                        let j = bits.trailing_zeros() as usize;
+                        bits &= bits.wrapping_sub(1);
+                        (j < 32).then_some(j)
+                    });
+                    for j in first.chain(32..end - start) {
+                        let tri = indices[start + j];
+                        let idx = tri.map(|i| i as usize);
+                        let res = if !X::CACHED {
+                            band_triangle_recomputed::<M, _, _, _, _, _>(
+                                frame, idx, &mut sink, depth, stats,
+                            )
+                        } else {
+                            band_triangle_cached::<M, _, _, _, _, _>(
+                                frame, cache, idx, &mut sink, depth, stats,
+                            )
+                        };
+                        res.map_err(lift)?;
+                    }
                 }
-            }
-            carry.end_band();
+                Ok(())
+            })?;
             let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
             target
                 .fill_contiguous(
@@ -680,128 +631,6 @@ impl Job<'_, '_> {
         }
         Ok(())
     }
-}
-
-/// How many unfinished triangles a band can hand to the next one with
-/// cached vertices (a triangle beyond them is set up again in the next
-/// band: the same pixels, more work). The store takes `CARRY × 352` bytes
-/// of stack (16.5 KB); recomputed vertices keep none. On S1 with 16-row
-/// bands, 294 triangles cross a band boundary. When the store was added,
-/// 32 entries brought the band frame to +11.0 % over the whole frame,
-/// against +16.2 % with 16 entries, +13.5 % with 24 and +10.0 % with 64
-/// (all 294). Once the whole frame culled before building its polygons
-/// (which the bands, culling in a pre-pass, did already), 32 entries gave
-/// +15.0 % and 48 gave +13.9 % (callgrind, `band_cost probe`; +14.4 % on
-/// a later, cheaper whole frame: the README's band table).
-///
-/// ```
-/// use fixshade::band::CARRY;
-/// assert_eq!(CARRY * 352, 16_896); // 16.5 KB of stack, with cached vertices only
-/// ```
-pub const CARRY: usize = 48;
-
-/// A triangle left unfinished at the end of a band: its index, its walk
-/// (with room for any shading mode's attributes) and its spans' facts.
-#[derive(Clone, Copy, Debug)]
-struct Carried {
-    t: u32,
-    walk: Walk<7>,
-    extra: CarryExtra,
-}
-
-/// The band-to-band store, in triangle order: the entries the band above
-/// left (the first `incoming`), then those this band leaves.
-struct CarryBuf {
-    q: Deque<Carried, CARRY>,
-    incoming: usize,
-    /// The triangle being drawn.
-    tag: u32,
-}
-
-/// A [`Carry`] that the band loop drives.
-trait BandCarry: Carry {
-    /// A band begins: what is kept so far came from the band above.
-    fn start_band(&mut self);
-    /// Triangle `t` is drawn next (what `put` keeps belongs to it).
-    fn set_tag(&mut self, t: u32);
-    /// Triangle `t`'s walk if the band above kept it, left in the store
-    /// until [`BandCarry::drop_taken`]. Triangles are asked in increasing
-    /// order; entries for smaller ones are dropped.
-    fn take(&mut self, t: u32) -> Option<(&Walk<7>, CarryExtra)>;
-    /// Drops the entry [`BandCarry::take`] gave: only after a `take` that
-    /// returned `Some`, before any other call.
-    fn drop_taken(&mut self);
-    /// A band ends: what the band above left and this band did not take
-    /// is dropped.
-    fn end_band(&mut self);
-}
-
-impl Carry for CarryBuf {
-    const ON: bool = true;
-    #[inline(always)]
-    fn put<const N: usize>(&mut self, walk: Walk<N>, extra: CarryExtra) {
-        // Full: the triangle is set up again in the next band.
-        let _ = self.q.push_back(Carried {
-            t: self.tag,
-            walk: walk.resize(),
-            extra,
-        });
-    }
-}
-
-impl BandCarry for CarryBuf {
-    #[inline(always)]
-    fn start_band(&mut self) {
-        self.incoming = self.q.len();
-    }
-    #[inline(always)]
-    fn set_tag(&mut self, t: u32) {
-        self.tag = t;
-    }
-    #[inline(always)]
-    fn take(&mut self, t: u32) -> Option<(&Walk<7>, CarryExtra)> {
-        while self.incoming > 0 {
-            let front = self.q.front()?.t;
-            if front > t {
-                return None;
-            }
-            if front == t {
-                let c = self.q.front()?;
-                return Some((&c.walk, c.extra));
-            }
-            self.q.pop_front();
-            self.incoming -= 1;
-        }
-        None
-    }
-    #[inline(always)]
-    fn drop_taken(&mut self) {
-        debug_assert!(self.incoming > 0);
-        self.q.pop_front();
-        self.incoming -= 1;
-    }
-    #[inline(always)]
-    fn end_band(&mut self) {
-        while self.incoming > 0 {
-            self.q.pop_front();
-            self.incoming -= 1;
-        }
-    }
-}
-
-impl BandCarry for NoCarry {
-    #[inline(always)]
-    fn start_band(&mut self) {}
-    #[inline(always)]
-    fn set_tag(&mut self, _: u32) {}
-    #[inline(always)]
-    fn take(&mut self, _: u32) -> Option<(&Walk<7>, CarryExtra)> {
-        None
-    }
-    #[inline(always)]
-    fn drop_taken(&mut self) {}
-    #[inline(always)]
-    fn end_band(&mut self) {}
 }
 
 /// Runs of consecutive triangles.
@@ -858,18 +687,16 @@ fn project3<S: Specular, V: Viewer, L: LightSet>(
 /// Draws triangle `idx` in the current band from the compact cache, after
 /// rejecting it by its rows.
 #[inline(always)]
-fn band_triangle_cached<M, P, D, S, V, L, K>(
+fn band_triangle_cached<M, P, D, S, V, L>(
     f: &Frame<'_, '_, S, V, L>,
     cache: &mut [BandVertex],
     idx: [usize; 3],
     sink: &mut P,
     depth: &mut D,
     stats: &mut DrawStats,
-    carry: &mut K,
 ) -> Result<(), RenderError<P::Error>>
 where
     M: ShadingMode,
-    K: Carry,
     P: crate::span::PixelSink,
     D: DepthTest,
     S: Specular,
@@ -887,23 +714,21 @@ where
     {
         return Ok(());
     }
-    f.triangle::<M, P, D, _, _>(&mut BandCorners { cache, idx }, sink, depth, stats, carry)
+    f.triangle::<M, P, D, _>(&mut BandCorners { cache, idx }, sink, depth, stats)
 }
 
 /// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
 /// in the current band.
 #[inline(always)]
-fn band_triangle_recomputed<M, P, D, S, V, L, K>(
+fn band_triangle_recomputed<M, P, D, S, V, L>(
     f: &Frame<'_, '_, S, V, L>,
     idx: [usize; 3],
     sink: &mut P,
     depth: &mut D,
     stats: &mut DrawStats,
-    carry: &mut K,
 ) -> Result<(), RenderError<P::Error>>
 where
     M: ShadingMode,
-    K: Carry,
     P: crate::span::PixelSink,
     D: DepthTest,
     S: Specular,
@@ -922,7 +747,7 @@ where
             return Ok(());
         }
     }
-    f.triangle::<M, P, D, _, _>(&mut c, sink, depth, stats, carry)
+    f.triangle::<M, P, D, _>(&mut c, sink, depth, stats)
 }
 
 /// An error of the band sink (memory, which cannot fail) as the target's.

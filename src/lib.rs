@@ -18,6 +18,7 @@ pub mod rasterizer;
 pub mod render;
 #[cfg(feature = "reference")]
 pub mod scene_kernel;
+mod setup;
 pub mod span;
 pub mod specular_table;
 pub mod vector;

@@ -64,8 +64,9 @@ use crate::normalize::normalize;
 use crate::num::division::{floor_div, floor_div_all};
 use crate::num::widening::{mul_by_narrow, mul_narrow};
 use crate::rasterizer::{
-    coverage, ClipRect, Cover, Facing, RasterVertex, Span, Triangle, Walk, COORD_LIMIT, DRIFT, TINY,
+    coverage, ClipRect, Cover, RasterVertex, Span, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
 };
+use crate::setup;
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
@@ -376,40 +377,6 @@ pub struct DrawStats {
     pub pixels: u32,
     /// Vertices lit.
     pub lit: u32,
-    /// Triangles that a band resumed from the band above without a new
-    /// set-up (the band renderer with cached vertices; each is also counted
-    /// in `drawn`).
-    pub carried: u32,
-}
-
-/// What a band keeps of a triangle it leaves unfinished besides its walk:
-/// the facts that its spans need.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct CarryExtra {
-    /// The vertex depths are `DRIFT` inside the `u16` range.
-    pub(crate) z_inside: bool,
-    /// A flat triangle's colour, and as RGB565.
-    pub(crate) colour: Shade,
-    pub(crate) plain: u16,
-}
-
-/// Where a band keeps the triangles it leaves unfinished, so that the next
-/// band resumes them without a new set-up ([`crate::band`]); the whole
-/// frame keeps none ([`NoCarry`]).
-pub(crate) trait Carry {
-    /// Whether walks are kept at all (if not, no code for it is compiled).
-    const ON: bool;
-    /// Keeps a paused walk of the current triangle, if there is room.
-    fn put<const N: usize>(&mut self, walk: Walk<N>, extra: CarryExtra);
-}
-
-/// No triangle is kept.
-pub(crate) struct NoCarry;
-
-impl Carry for NoCarry {
-    const ON: bool = false;
-    #[inline(always)]
-    fn put<const N: usize>(&mut self, _: Walk<N>, _: CarryExtra) {}
 }
 
 /// A bound on the doubled area (in 1/256 pixel²) of a triangle whose box
@@ -509,8 +476,26 @@ pub struct CachedVertex {
 /// assert_eq!(e, Err(RenderError::TargetTooLarge));
 /// ```
 pub const MAX_TARGET_SIDE: u32 = 1 << 20;
-// The renderer's viewports are clip rectangles the rasterizer takes.
-const _: () = assert!(MAX_TARGET_SIDE as i64 == crate::rasterizer::CLIP_LIMIT);
+
+/// The largest side of a tile. A target wider or taller than this is drawn
+/// a tile at a time, each tile with the guard band around its own centre
+/// (whole pixels: a tile's columns and rows shift by integers); a smaller
+/// one is one tile. The grid is the viewport's, whatever rows a band
+/// draws, so bands and whole frames clip every triangle alike.
+/// (The rasterizer's clip rectangle limit: inside the guard band's clip
+/// planes with a pixel to spare, `Frame::guard_clip`.)
+const TILE: i32 = CLIP_LIMIT as i32;
+
+/// The tile of a viewport side `len` that holds pixel `at`: its first and
+/// last pixels and its centre pixel.
+fn tile(len: i32, at: i32) -> (i32, i32, i32) {
+    if len <= TILE {
+        (0, len - 1, len >> 1)
+    } else {
+        let lo = at - at % TILE;
+        (lo, (lo + TILE - 1).min(len - 1), lo + TILE / 2)
+    }
+}
 
 /// A frame's renderer: camera, model transform, prepared lighting and
 /// options.
@@ -793,22 +778,25 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         };
         // An empty target draws nothing (and has no aspect ratio).
         let modelview = self.mesh_modelview(mesh);
-        let Some(frame) = self.frame(mesh, &modelview, size)? else {
+        let Some(mut frame) = self.frame(mesh, &modelview, size)? else {
             return Ok(stats);
         };
         // Every vertex projected up front: a mesh's vertices are (nearly)
         // all used, and the triangle loop then tests no flag (callgrind,
         // S3 on x86-64: 0.17 M instructions a frame).
         frame.project_all(&mut cache[..n]);
-        for tri in mesh.indices {
-            let idx = tri.map(|i| i as usize);
-            let mut corners = CacheCorners {
-                cache,
-                slot: idx,
-                vertex: idx,
-            };
-            frame.triangle::<M, P, D, _, _>(&mut corners, sink, depth, &mut stats, &mut NoCarry)?;
-        }
+        frame.each_tile(|frame| {
+            for tri in mesh.indices {
+                let idx = tri.map(|i| i as usize);
+                let mut corners = CacheCorners {
+                    cache,
+                    slot: idx,
+                    vertex: idx,
+                };
+                frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
+            }
+            Ok(())
+        })?;
         Ok(stats)
     }
 
@@ -846,6 +834,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             h: h as i64,
             viewport,
             rows: (viewport.y0, viewport.y1),
+            cols: (viewport.x0, viewport.x1),
+            origin: (0, 0),
         }))
     }
 }
@@ -1054,8 +1044,13 @@ pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     /// The viewport: projection, window mapping and the attribute planes'
     /// anchor.
     pub(crate) viewport: ClipRect,
-    /// The rows drawn (all of the viewport's, or a band's).
+    /// The rows drawn (all of the viewport's, or a band's; within a tile
+    /// while [`Frame::each_tile`] runs).
     pub(crate) rows: (i32, i32),
+    /// The columns drawn: the tile's.
+    cols: (i32, i32),
+    /// The tile's centre in 1/16 pixel, the guard band's centre.
+    origin: (i64, i64),
 }
 
 /// Where a vertex of a near-clipped polygon comes from: an original vertex,
@@ -1279,13 +1274,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// set up their walks (callgrind, S1 in cached 16-row bands: 3.113 M out
     /// of line, 3.060 M inlined).
     #[inline(always)]
-    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners, K: Carry>(
+    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners>(
         &self,
         c: &mut C,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-        carry: &mut K,
     ) -> Result<(), RenderError<P::Error>> {
         let inside = [c.inside(0), c.inside(1), c.inside(2)];
         if !inside.iter().any(|&i| i) {
@@ -1368,10 +1362,27 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let lit_back = a > 0 && self.r.options.two_sided;
         // Every piece faces as the triangle does, or draws nothing.
-        let culled = Some(if a < 0 { Facing::Back } else { Facing::Front });
+        let front = a < 0;
         let poly = &poly[..count];
-        // Depth inside the u16 range, with the drift of a bounded span to
-        // spare, at every vertex: then on every pixel of a bounded span.
+        // A corner outside the guard band (rare: a triangle reaching far
+        // past the viewport) has the polygon clipped to it, from its
+        // clip-space corners.
+        let guarded = win[..count].iter().all(|w| self.in_guard(w, D::ENABLED));
+        let mut clip_buf = [[0i64; 4]; 4];
+        let clips = if guarded {
+            None
+        } else {
+            let orig = [c.clip(self, 0), c.clip(self, 1), c.clip(self, 2)];
+            for (k, p) in poly.iter().enumerate() {
+                clip_buf[k] = match *p {
+                    PolyVert::Orig(i) => orig[i],
+                    PolyVert::Cut { a, b, num, den } => cut(&orig[a], &orig[b], num, den),
+                };
+            }
+            Some(&clip_buf[..count])
+        };
+        // Depth inside the u16 range, with a span's drift to spare, at
+        // every vertex: then on every pixel of every span.
         // The attribute is `z_w·65535·2⁸ + 2⁷` (`window`); in
         // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
         // cleared 65535, so the span needs no clamp.
@@ -1391,18 +1402,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 let plain = RawU16::from(colour.to_rgb565()).into_inner();
                 stats.lit = stats.lit.saturating_add(1);
                 let verts = raster_verts::<1>(poly, &win, |_| [0]);
-                let extra = CarryExtra {
-                    z_inside,
-                    colour,
-                    plain,
-                };
                 self.fan(
                     &verts[..count],
-                    culled,
-                    cover,
+                    clips,
+                    front,
+                    D::ENABLED,
                     stats,
-                    carry,
-                    extra,
+                    widen,
                     |sp, st| self.span_flat(sp, colour, plain, sink, depth, st, z_inside),
                 )
             }
@@ -1426,17 +1432,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         (b[2] * 31 + (1 << 15)) as i64,
                     ]
                 });
-                let extra = CarryExtra {
-                    z_inside,
-                    ..CarryExtra::default()
-                };
                 self.fan(
                     &verts[..count],
-                    culled,
-                    cover,
+                    clips,
+                    front,
+                    D::ENABLED,
                     stats,
-                    carry,
-                    extra,
+                    widen,
                     |sp, st| self.span_gouraud(sp, sink, depth, st, z_inside),
                 )
             }
@@ -1446,32 +1448,53 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     c.eye_normal(self, 1, true),
                     c.eye_normal(self, 2, true),
                 ];
+                // Eye positions relative to corner 0's, shifted right until
+                // every difference is below 2²⁴ (the set-up's attributes
+                // stay within ±2²⁵): full precision for a small triangle,
+                // 2⁻²⁴ of its extent for a large one. The shaders get them
+                // back in `I8F24` (`unpack` above).
+                let origin = en[0].0.to_bits().map(i64::from);
+                let mut spread = 0u64;
+                for (e, _) in &en[1..] {
+                    let b = e.to_bits();
+                    for k in 0..3 {
+                        spread = spread.max((b[k] as i64 - origin[k]).unsigned_abs());
+                    }
+                }
+                let shift = (64 - spread.leading_zeros()).saturating_sub(24);
                 let verts = raster_verts::<7>(poly, &win, |i| {
                     let (e, n) = en[i];
                     let n = if lit_back { n.neg() } else { n }.to_bits();
                     let e = e.to_bits();
-                    // Normals get 12 more fractional bits (Q.26, below 2^27).
+                    // Normals get 10 more fractional bits (Q.24, at most 2²⁴).
                     [
                         0,
-                        (n[0] as i64) << 12,
-                        (n[1] as i64) << 12,
-                        (n[2] as i64) << 12,
-                        e[0] as i64,
-                        e[1] as i64,
-                        e[2] as i64,
+                        (n[0] as i64) << 10,
+                        (n[1] as i64) << 10,
+                        (n[2] as i64) << 10,
+                        (e[0] as i64 - origin[0]) >> shift,
+                        (e[1] as i64 - origin[1]) >> shift,
+                        (e[2] as i64 - origin[2]) >> shift,
                     ]
                 });
-                let extra = CarryExtra {
-                    z_inside,
-                    ..CarryExtra::default()
-                };
                 self.fan(
                     &verts[..count],
-                    culled,
-                    cover,
+                    clips,
+                    front,
+                    D::ENABLED,
                     stats,
-                    carry,
-                    extra,
+                    |s| {
+                        let mut w = widen(s);
+                        for k in 1..4 {
+                            w.start[k] <<= 2;
+                            w.step[k] <<= 2;
+                        }
+                        for k in 4..7 {
+                            w.start[k] = (w.start[k] << shift) + origin[k - 4];
+                            w.step[k] <<= shift;
+                        }
+                        w
+                    },
                     |sp, st| self.span_phong(sp, sink, depth, st, z_inside),
                 )
             }
@@ -1530,7 +1553,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let c = self.viewport;
         // ⌈(m − 8)/16⌉ = (m + 7) >> 4, ⌊(m − 8)/16⌋ = (m − 8) >> 4 (arithmetic).
-        let (x_lo, x_hi) = (
+        let (u_lo, u_hi) = (
             ((minx + 7) >> 4).max(c.x0 as i64),
             ((maxx - 8) >> 4).min(c.x1 as i64),
         );
@@ -1538,110 +1561,242 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             ((miny + 7) >> 4).max(c.y0 as i64),
             ((maxy - 8) >> 4).min(c.y1 as i64),
         );
+        let (x_lo, x_hi) = (u_lo.max(self.cols.0 as i64), u_hi.min(self.cols.1 as i64));
         let (y_lo, y_hi) = (v_lo.max(self.rows.0 as i64), v_hi.min(self.rows.1 as i64));
         (x_lo <= x_hi && y_lo <= y_hi).then_some((
             (x_lo, x_hi),
             (y_lo, y_hi),
-            y_lo == v_lo && y_hi == v_hi,
+            y_lo == v_lo && y_hi == v_hi && x_lo == u_lo && x_hi == u_hi,
         ))
     }
 
-    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3)`, calling `span` for
-    /// each span until it fails, except pieces facing `culled`; an
-    /// unclipped triangle that goes on below the band is handed to `carry`.
+    /// Whether window position `w` lies inside the guard band around the
+    /// tile's centre (and, with a depth test, its depth attribute
+    /// inside the set-up's range): such a corner goes to the 32-bit set-up
+    /// as it is.
+    #[inline(always)]
+    fn in_guard(&self, w: &[i64; 3], depth: bool) -> bool {
+        let (ox, oy) = self.origin;
+        let g = setup::GUARD as u64;
+        (w[0] - ox).unsigned_abs() <= g
+            && (w[1] - oy).unsigned_abs() <= g
+            && (!depth || w[2] < Z_GUARD)
+    }
+
+    /// Calls `f` with the frame limited to each tile ([`TILE`]) that the
+    /// rows drawn meet, in turn: one call for a target of at most
+    /// [`TILE`] pixels a side.
+    pub(crate) fn each_tile<E>(
+        &mut self,
+        mut f: impl FnMut(&Self) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let (rows, vp) = (self.rows, self.viewport);
+        let (w, h) = (self.w as i32, self.h as i32);
+        let mut y = rows.0;
+        let mut res = Ok(());
+        while y <= rows.1 && res.is_ok() {
+            let (_, y1, cy) = tile(h, y);
+            self.rows = (y, y1.min(rows.1));
+            let mut x = vp.x0;
+            while x <= vp.x1 && res.is_ok() {
+                let (_, x1, cx) = tile(w, x);
+                self.cols = (x, x1);
+                self.origin = (16 * cx as i64, 16 * cy as i64);
+                res = f(self);
+                x = x1 + 1;
+            }
+            y = y1 + 1;
+        }
+        self.rows = rows;
+        res
+    }
+
+    /// Clips polygon `p` (clip-space corners `c`) against the guard band's
+    /// planes and, with a depth test, the plane `z_w = 1.5` beyond the far
+    /// plane (a pixel there is never drawn: its depth is past 65535), into
+    /// `out`; returns the corner count (at most 9: a polygon of 4 and five
+    /// planes). A corner on a cut edge gets its window position from its
+    /// clip coordinates and its attributes interpolated linearly in window
+    /// space, so that every pixel inside the band sees the plane the
+    /// unclipped triangle had (SPEC.md 4).
+    ///
+    /// Each cut is computed from the edge's inside corner to its outside
+    /// one, whichever way the polygon runs: two triangles sharing an edge
+    /// cut it at the same point, and stay watertight.
+    #[inline(never)]
+    fn guard_clip<const N: usize>(
+        &self,
+        p: &[RasterVertex<N>],
+        c: &[[i64; 4]],
+        depth: bool,
+        out: &mut [RasterVertex<N>; 9],
+    ) -> usize {
+        let mut a = [([0i64; 4], p[0]); 9];
+        let mut b = a;
+        let mut n = p.len();
+        for k in 0..n {
+            a[k] = (c[k], p[k]);
+        }
+        // The guard planes `|x_w − o_x| ≤ G` (1/16 pixel, two pixels and
+        // a half to spare), with `x_w = S·x_c/w + S`, `S = 8W`:
+        // `(G + o_x − S)·w − S·x_c ≥ 0` and `(G − o_x + S)·w + S·x_c ≥ 0`;
+        // `y_w = S′ − S′·y_c/w` (`S′ = 8H`) likewise with `y_c` negated.
+        // `|G ± (o − S)| < 2²⁵` (`o`, `S` ≤ 2²⁴), `w ≤ 2³¹`, `S·|x_c| <
+        // 2²³·2³⁹` (`window`'s ranges): each distance is below
+        // 2⁶² + 2⁵⁶, in `i64`.
+        let g = (setup::GUARD - 40) as i64;
+        let (sx, sy) = (8 * self.w, 8 * self.h);
+        let (ox, oy) = self.origin;
+        let (px, mx, py, my) = (g + ox - sx, g - ox + sx, g + oy - sy, g - oy + sy);
+        let planes = if depth { 5 } else { 4 };
+        for plane in 0..planes {
+            let dist = |q: &[i64; 4]| match plane {
+                0 => px * q[3] - sx * q[0],
+                1 => mx * q[3] + sx * q[0],
+                2 => my * q[3] - sy * q[1],
+                3 => py * q[3] + sy * q[1],
+                _ => 2 * q[3] - q[2],
+            };
+            let mut m = 0;
+            for k in 0..n {
+                let (u, v) = (&a[k], &a[(k + 1) % n]);
+                let (du, dv) = (dist(&u.0), dist(&v.0));
+                if du >= 0 {
+                    b[m] = *u;
+                    m += 1;
+                }
+                if (du >= 0) != (dv >= 0) {
+                    let ((i, di), (o, dout)) = if du >= 0 {
+                        ((u, du), (v, dv))
+                    } else {
+                        ((v, dv), (u, du))
+                    };
+                    b[m] = self.guard_cut(i, o, di, dout);
+                    m += 1;
+                }
+            }
+            n = m;
+            a[..n].copy_from_slice(&b[..n]);
+            if n < 3 {
+                return 0;
+            }
+        }
+        for k in 0..n {
+            out[k] = a[k].1;
+        }
+        n
+    }
+
+    /// The corner where a plane cuts edge `i → o` (`di ≥ 0 > dout`, the
+    /// plane's distances): clip position at `t = di / (di − dout)` along
+    /// the edge, window position from it, attributes at the matching
+    /// window-space fraction `s = di·w_o / (di·w_o − dout·w_i)`.
+    fn guard_cut<const N: usize>(
+        &self,
+        i: &([i64; 4], RasterVertex<N>),
+        o: &([i64; 4], RasterVertex<N>),
+        di: i64,
+        dout: i64,
+    ) -> ([i64; 4], RasterVertex<N>) {
+        let q = cut(&i.0, &o.0, di, di - dout);
+        let w = self.window(&q);
+        let num = di as i128 * o.0[3] as i128;
+        let den = num - dout as i128 * i.0[3] as i128;
+        let mut attr = i.1.attr;
+        for (a, b) in attr.iter_mut().zip(o.1.attr) {
+            let x = (b - *a) as i128 * num;
+            let r = if x >= 0 {
+                (2 * x + den) / (2 * den)
+            } else {
+                -((-2 * x + den) / (2 * den))
+            };
+            *a += r as i64;
+        }
+        attr[0] = w[2];
+        (
+            q,
+            RasterVertex {
+                x: w[0],
+                y: w[1],
+                attr,
+            },
+        )
+    }
+
+    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3), …` of polygon
+    /// `verts` (clip-space corners `clips`, given when a corner lies
+    /// outside the guard band: the polygon is clipped to it first) in 32
+    /// bits ([`setup::draw`]), calling `span` for each span until it fails.
+    /// Every piece faces as the polygon does (`front`) or draws nothing:
+    /// culling was decided once, and a piece that snapping turned over is
+    /// dropped. `unpack` turns the set-up's 32-bit span into the shaders'.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn fan<const N: usize, E, K: Carry>(
+    fn fan<const N: usize, E>(
         &self,
         verts: &[RasterVertex<N>],
-        culled: Option<Facing>,
-        cover: Cover,
+        clips: Option<&[[i64; 4]]>,
+        front: bool,
+        depth: bool,
         stats: &mut DrawStats,
-        carry: &mut K,
-        extra: CarryExtra,
+        unpack: impl Fn(&setup::Span<N>) -> Span<N>,
         mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
     ) -> Result<(), E> {
+        let mut clipped = [verts[0]; 9];
+        let poly = match clips {
+            None => verts,
+            Some(c) => {
+                let n = self.guard_clip(verts, c, depth, &mut clipped);
+                &clipped[..n]
+            }
+        };
+        let (ox, oy) = self.origin;
+        let (cx, cy) = ((ox >> 4) as i32, (oy >> 4) as i32);
+        let cols = (self.cols.0 - cx, self.cols.1 - cx);
+        let rows = (self.rows.0 - cy, self.rows.1 - cy);
         let mut res = Ok(());
-        for k in 1..verts.len() - 1 {
-            // The first piece is the first three vertices (no copy).
-            let copy;
-            let tri = match <&[RasterVertex<N>; 3]>::try_from(&verts[k - 1..k + 2]) {
-                Ok(t) if k == 1 => t,
-                _ => {
-                    copy = [verts[0], verts[k], verts[k + 1]];
-                    &copy
+        for k in 1..poly.len().saturating_sub(1) {
+            let v = [&poly[0], &poly[k], &poly[k + 1]].map(|p| {
+                debug_assert!(self.in_guard(&[p.x, p.y, p.attr[0]], depth));
+                let mut a = p.attr;
+                // Without a depth test the depth is not drawn, and not
+                // bounded by the guard band: left out of the set-up.
+                if !depth {
+                    a[0] = 0;
                 }
-            };
-            // Culling was decided for the whole polygon; a piece that
-            // snapping turned the other way is dropped.
-            if let Some(t) =
-                Triangle::setup_rows_within(tri, self.viewport, self.rows, culled, cover)
-            {
+                setup::Vertex {
+                    x: (p.x - ox) as i32,
+                    y: (p.y - oy) as i32,
+                    a: a.map(|a| {
+                        debug_assert!(a.unsigned_abs() <= setup::ATTR as u64);
+                        a as i32
+                    }),
+                }
+            });
+            // Inside the guard band the doubled area fits `i32`
+            // (`setup`'s ranges); negative is a front face (y down).
+            let area =
+                (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+            if area == 0 || (area < 0) != front {
+                continue;
+            }
+            let drawn = setup::draw(&v, cols, rows, |s| {
+                if res.is_ok() {
+                    let mut sp = unpack(s);
+                    sp.y += cy;
+                    sp.x0 += cx;
+                    sp.x1 += cx;
+                    res = span(&sp, stats);
+                }
+            });
+            if drawn {
                 stats.drawn = stats.drawn.saturating_add(1);
-                let rest = t.walk_rows(|s| {
-                    if res.is_ok() {
-                        res = span(s, stats);
-                    }
-                });
-                // A quadrilateral's two pieces (a triangle cut by the near
-                // plane) are not kept: the next band sets it up again.
-                if let (true, 3, Some(w)) = (K::ON, verts.len(), rest) {
-                    carry.put(w, extra);
-                }
             }
             if res.is_err() {
                 break;
             }
         }
         res
-    }
-
-    /// Draws the current band's rows of a triangle that the band above
-    /// left unfinished (`walk`, kept by a [`Carry`]). Returns the walk
-    /// paused below this band, if it goes on (the caller keeps it). The
-    /// walk is read from the store by reference rather than moved out
-    /// first (`resize` still copies it once): callgrind, S1 in cached
-    /// 16-row bands 2.856 M → 2.843 M.
-    pub(crate) fn resume<M: ShadingMode, P: PixelSink, D: DepthTest>(
-        &self,
-        walk: &Walk<7>,
-        extra: CarryExtra,
-        sink: &mut P,
-        depth: &mut D,
-        stats: &mut DrawStats,
-    ) -> Result<Option<Walk<7>>, RenderError<P::Error>> {
-        let z = extra.z_inside;
-        match M::KIND {
-            ShadingKind::Flat => self.resume_walk::<1, _>(walk, stats, |sp, st| {
-                self.span_flat(sp, extra.colour, extra.plain, sink, depth, st, z)
-            }),
-            ShadingKind::Gouraud => self.resume_walk::<4, _>(walk, stats, |sp, st| {
-                self.span_gouraud(sp, sink, depth, st, z)
-            }),
-            ShadingKind::Phong => self.resume_walk::<7, _>(walk, stats, |sp, st| {
-                self.span_phong(sp, sink, depth, st, z)
-            }),
-        }
-    }
-
-    /// The walk of `N` attributes from `walk` drawn in this band; what it
-    /// leaves for the next band, if anything.
-    #[inline(always)]
-    fn resume_walk<const N: usize, E>(
-        &self,
-        walk: &Walk<7>,
-        stats: &mut DrawStats,
-        mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
-    ) -> Result<Option<Walk<7>>, E> {
-        let mut res = Ok(());
-        stats.drawn = stats.drawn.saturating_add(1);
-        stats.carried = stats.carried.saturating_add(1);
-        let rest = walk.resize::<N>().resume(self.rows, |s| {
-            if res.is_ok() {
-                res = span(s, stats);
-            }
-        });
-        res.map(|()| rest.map(Walk::resize))
     }
 
     #[inline(always)]
@@ -1671,10 +1826,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// up); shorter ones one at a time ([`PackedGouraud`]). Which one a span
     /// takes depends on its length only, so bands and whole frames agree.
     ///
-    /// A bounded span (see [`DRIFT`]) needs no range check: vertex colours
-    /// are at least ½ LSB (2¹⁵) inside their fields, more than the drift
-    /// plus the pair shader's lane margin. Where the check is made, it
-    /// passes on such a span, so the pixels are the same.
+    /// Undithered spans need no range check: vertex colours are at least
+    /// ½ LSB (2¹⁵) inside their fields, more than a span's drift
+    /// ([`DRIFT`]) plus the pair shader's lane margin. Dithered ones are
+    /// clamped per pixel ([`ClampedGouraud`]).
     #[inline(always)]
     fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
@@ -1689,7 +1844,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let c = [s.start[1], s.start[2], s.start[3]];
         let d = [s.step[1], s.step[2], s.step[3]];
         let n = (s.x1 - s.x0 + 1) as u32;
-        if !dither && s.bounded {
+        if !dither {
             return if n >= PAIR_SPAN {
                 self.send(
                     s,
@@ -1710,24 +1865,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 )
             };
         }
-        if !dither && n >= PAIR_SPAN {
-            if let Some(sh) = PairGouraud::new(c, d, n) {
-                return self.send(s, sink, depth, stats, z_inside, sh);
-            }
-        }
-        match (dither, PackedGouraud::new(c, d, n)) {
-            (false, Some(sh)) => self.send(s, sink, depth, stats, z_inside, sh),
-            _ => {
-                let sh = ClampedGouraud {
-                    c,
-                    d,
-                    dither,
-                    x: s.x0,
-                    y: s.y,
-                };
-                self.send(s, sink, depth, stats, z_inside, sh)
-            }
-        }
+        let sh = ClampedGouraud {
+            c,
+            d,
+            dither,
+            x: s.x0,
+            y: s.y,
+        };
+        self.send(s, sink, depth, stats, z_inside, sh)
     }
 
     #[inline(always)]
@@ -1756,7 +1901,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
     /// One span through the depth test into the sink; `z_inside`: the
     /// triangle's vertex depths are at least [`DRIFT`] inside the `u16`
-    /// range (so a bounded span's depth is inside it).
+    /// range (so every span's depth is inside it).
     #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
@@ -1771,13 +1916,29 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let z = SpanDepth {
             z: s.start[0],
             dz: s.step[0],
-            inside: z_inside && s.bounded,
+            inside: z_inside,
         };
         let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
         stats.pixels = stats.pixels.saturating_add(w);
         Ok(())
     }
 }
+
+/// The set-up's span as the shaders take it (`i64` attributes).
+#[inline(always)]
+fn widen<const N: usize>(s: &setup::Span<N>) -> Span<N> {
+    Span {
+        y: s.y,
+        x0: s.x0,
+        x1: s.x1,
+        start: s.start.map(i64::from),
+        step: s.step.map(i64::from),
+    }
+}
+
+/// The depth attribute's bound in the set-up (`setup::ATTR`): a corner
+/// past it (beyond `z_w = 2`, so never drawn) is clipped at `z_w = 1.5`.
+const Z_GUARD: i64 = setup::ATTR as i64;
 
 /// The shortest Gouraud span coloured two pixels at a time. The pair
 /// shader's set-up (three lanes from `Q.16`, the per-pair step) costs more

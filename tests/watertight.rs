@@ -303,10 +303,63 @@ fn draw(
 /// Renders in the exact orthographic set-up and compares every pixel's
 /// count with the oracle's; returns the number of pixels covered.
 fn assert_matches_oracle(what: &str, o: Ortho, positions: &[P256], indices: &[[u16; 3]]) -> usize {
-    let expected = oracle(o, positions, indices);
+    assert_near_oracle(what, o, positions, indices, false)
+}
+
+/// How far from the target's centre, in 1/16 pixel, a corner may lie and
+/// its triangle still be set up as it is: past it the kernel clips the
+/// triangle to its guard band (SPEC.md, kernel differences). A little
+/// inside the band's planes, so that every clipped triangle is caught.
+const GUARD_REACH: i64 = 16 * 1000;
+
+/// Whether pixel centre `s` lies within 1/16 pixel of the line through an
+/// edge of triangle `v` that has a corner past [`GUARD_REACH`]: where
+/// the guard band's cut corners, snapped to 1/16 pixel, may move that
+/// edge.
+fn near_clipped_edge(v: [(i64, i64); 3], centre: i64, s: (i64, i64)) -> bool {
+    let far =
+        |p: (i64, i64)| (p.0 - centre).abs() > GUARD_REACH || (p.1 - centre).abs() > GUARD_REACH;
+    (0..3).any(|k| {
+        let (p, q) = (v[k], v[(k + 1) % 3]);
+        let e = edge(p, q, s) as i128;
+        let len2 = ((q.0 - p.0).pow(2) + (q.1 - p.1).pow(2)) as i128;
+        (far(p) || far(q)) && e * e <= len2
+    })
+}
+
+/// [`assert_matches_oracle`]; with `loose`, pixels [`near_clipped_edge`]
+/// of a triangle are not compared (the others still are).
+fn assert_near_oracle(
+    what: &str,
+    o: Ortho,
+    positions: &[P256],
+    indices: &[[u16; 3]],
+    loose: bool,
+) -> usize {
+    let mut expected = oracle(o, positions, indices);
     let mut t = CountingTarget::new(o.size, o.size);
     let vs: Vec<[i16; 3]> = positions.iter().map(|&p| Ortho::q(p)).collect();
     draw(&o.camera(), &vs, P256_BOX, indices, false, &mut t);
+    if loose {
+        let w = o.size as i64;
+        let mut skipped = 0;
+        for (i, (e, k)) in expected.iter_mut().zip(&t.counts).enumerate() {
+            let s = (16 * (i as i64 % w) + 8, 16 * (i as i64 / w) + 8);
+            let near = indices
+                .iter()
+                .any(|t| near_clipped_edge(t.map(|i| o.snap(positions[i as usize])), 8 * w, s));
+            if near && *e != *k {
+                *e = *k;
+                skipped += 1;
+            }
+        }
+        // The snapped cut corners move an edge by much less than a pixel:
+        // a few pixels along it, not a band.
+        assert!(
+            skipped <= 2 * w,
+            "{what}: {skipped} pixels near clipped edges differ"
+        );
+    }
     assert_eq!(
         t.outside, 0,
         "{what}: {} writes outside the target",
@@ -681,7 +734,7 @@ proptest! {
         // A fan of a random polygon may self-overlap: check each piece alone.
         for t in &idx {
             let pos = t.map(|i| v[i as usize]);
-            assert_matches_oracle("off-screen triangle", o, &pos, &[[0, 1, 2]]);
+            assert_near_oracle("off-screen triangle", o, &pos, &[[0, 1, 2]], true);
         }
     }
 }

@@ -84,29 +84,6 @@ pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
     hi + (al * bl) as u64 + ((mid as u64) << 16)
 }
 
-/// `a · b` for `|a| < 2³⁴` and `|b| ≤ 2¹²` (an attribute difference, within
-/// [`ATTR_LIMIT`](crate::rasterizer::ATTR_LIMIT)'s bound, times a small
-/// triangle's coordinate difference): with `a = aₕ·2¹⁶ + aₗ`,
-/// `|aₕ·b| ≤ 2³⁰` and `|aₗ·b| < 2²⁸` fit `i32`, so two 32-bit multiplies
-/// make it where a 64-bit product is a library call (the plain product
-/// elsewhere; a debug build with `fixshade_soft_mul64` checks the ranges).
-#[inline(always)]
-pub(crate) fn mul_by_small(a: i64, b: i64) -> i64 {
-    if platform::SOFT_MUL64 {
-        debug_assert!(a.unsigned_abs() < 1 << 34 && b.unsigned_abs() <= 1 << 12);
-        mul_by_small_limbs(a, b as i32)
-    } else {
-        a * b
-    }
-}
-
-/// [`mul_by_small`] from 16-bit halves of `a` (`aₗ` unsigned).
-#[inline(always)]
-pub(crate) fn mul_by_small_limbs(a: i64, b: i32) -> i64 {
-    let (ah, al) = ((a >> 16) as i32, (a & 0xFFFF) as i32);
-    (((ah * b) as i64) << 16) + (al * b) as i64
-}
-
 /// `a · b`, exactly (`|a · b| ≤ 2⁴⁶`): on the targets without a 32 × 32 →
 /// 64-bit multiply, two 16 × 16 → 32-bit products, with `a = aₕ·2¹⁶ + aₗ`
 /// (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`): `|aₕ·b| ≤ 2³⁰` and `|aₗ·b| < 2³¹` fit
@@ -126,15 +103,6 @@ pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let b = b as i32;
     (((ah * b) as i64) << 16) + (al * b) as i64
-}
-
-/// `a · b` for `b < 2¹⁶`, exactly: with `a = aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`,
-/// `0 ≤ aₗ < 2¹⁶`), `aₕ·b` fits `i32` and `aₗ·b` fits `u32`: two 16 × 16 →
-/// 32-bit products (`muls`) on every core.
-#[inline(always)]
-pub(crate) fn mul_i32_u16(a: i32, b: u32) -> i64 {
-    debug_assert!(b < 1 << 16);
-    ((((a >> 16) * b as i32) as i64) << 16) + ((a as u32 & 0xFFFF) * b) as i64
 }
 
 /// [`mul_by_narrow`] modulo 2⁶⁴ from 32-bit limbs: with `a = aₕ·2³² + aₗ`
@@ -173,10 +141,7 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{
-        mul_by_small_limbs, mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u16,
-        mul_i64_i32_limbs, mul_u32_limbs,
-    };
+    use super::{mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i64_i32_limbs, mul_u32_limbs};
     use crate::rasterizer::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
@@ -218,20 +183,9 @@ mod tests {
                     mul_u32_limbs(a as u32, b as u32),
                     (a as u32) as u64 * (b as u32) as u64
                 );
-                // mul_by_small's domain: |a| < 2^34, |b| ≤ 2^12, random
-                // magnitudes and both ends.
-                let a34 = (a as i64) >> (29 + (b % 32));
-                let b12 = ((b as i64) >> (51 + (a % 13))) as i32;
-                for (x, y) in [(a34, b12), ((1 << 34) - 1, 1 << 12)] {
-                    for (x, y) in [(x, y), (x, -y), (-x, y), (-x, -y)] {
-                        assert_eq!(mul_by_small_limbs(x, y), x * y as i64, "{x} {y}");
-                    }
-                }
                 for b16 in [b as i16, i16::MIN, i16::MAX] {
                     assert_eq!(mul_i32_i16_limbs(a32, b16), a32 as i64 * b16 as i64);
                 }
-                let b16 = b as u32 & 0xFFFF;
-                assert_eq!(mul_i32_u16(a32, b16), a32 as i64 * b16 as i64);
                 let h = mul_hi32(a as u32, b as u32);
                 let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
                 assert!(h == exact || h + 1 == exact, "{a} {b}");
