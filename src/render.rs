@@ -1681,8 +1681,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 return 0;
             }
         }
+        // A cut corner's clip position is rounded to a unit, which moves
+        // its window position by up to `8W / 2w` sixteenths: near a tiny
+        // `w` (a near plane close to the eye, a wide target) that is
+        // pixels, and the corner can land past the band. Such a corner is
+        // moved onto the band's edge (a clamp of a position already that
+        // far off), which the set-up's ranges need.
+        let (ox, oy) = self.origin;
+        let band = setup::GUARD as i64;
         for k in 0..n {
-            out[k] = a[k].1;
+            let mut p = a[k].1;
+            p.x = p.x.clamp(ox - band, ox + band);
+            p.y = p.y.clamp(oy - band, oy + band);
+            p.attr[0] = p.attr[0].clamp(1 - Z_GUARD, Z_GUARD - 1);
+            out[k] = p;
         }
         n
     }
