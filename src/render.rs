@@ -1712,8 +1712,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ) -> ([i64; 4], RasterVertex<N>) {
         let q = cut(&i.0, &o.0, di, di - dout);
         let w = self.window(&q);
-        let num = di as i128 * o.0[3] as i128;
-        let den = num - dout as i128 * i.0[3] as i128;
+        // With both corners in front of `w = 0`, `0 ≤ s ≤ 1` and the
+        // denominator is positive. A corner at or behind it (a raw
+        // camera's clip space, where a window position is no position)
+        // has no window-space fraction: the clip-space one stands in
+        // (`di − dout > 0`).
+        let (num, den) = if i.0[3] > 0 && o.0[3] > 0 {
+            let num = di as i128 * o.0[3] as i128;
+            (num, num - dout as i128 * i.0[3] as i128)
+        } else {
+            (di as i128, (di - dout) as i128)
+        };
         let mut attr = i.1.attr;
         for (a, b) in attr.iter_mut().zip(o.1.attr) {
             let x = (b - *a) as i128 * num;
