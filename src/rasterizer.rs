@@ -433,10 +433,11 @@ pub struct Span<const N: usize> {
 }
 
 /// How far a span's attributes may stray from the range of the triangle's
-/// vertex values, in attribute units, at every pixel of the span (stepped
-/// from `start` by `step`): the plane at a covered pixel lies between the
-/// vertex values, and the set-up's rounding of origin and gradients adds
-/// less than this across a tile (`src/setup.rs`).
+/// vertex values, in attribute units, at the span's first pixel; stepped
+/// from `start` by `step` (the gradient rounded to a unit), pixel `k` of
+/// the span is within `DRIFT + k/2`. The plane at a covered pixel lies
+/// between the vertex values; the set-up's rounding of origin and
+/// gradients adds the rest (`src/setup.rs`).
 ///
 /// ```
 /// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, DRIFT};
@@ -445,7 +446,8 @@ pub struct Span<const N: usize> {
 /// rasterize(&v, ClipRect::of_size(128, 128).unwrap(), false, |s| {
 ///     for k in 0..=(s.x1 - s.x0) as i64 {
 ///         let a = s.start[0] + k * s.step[0];
-///         assert!((-12_345 - DRIFT..=77_777 + DRIFT).contains(&a));
+///         let d = DRIFT + (k + 1) / 2;
+///         assert!((-12_345 - d..=77_777 + d).contains(&a));
 ///     }
 /// });
 /// ```

@@ -1381,14 +1381,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             Some(&clip_buf[..count])
         };
-        // Depth inside the u16 range, with a span's drift to spare, at
-        // every vertex: then on every pixel of every span.
-        // The attribute is `z_w·65535·2⁸ + 2⁷` (`window`); in
-        // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
-        // cleared 65535, so the span needs no clamp.
-        let z_inside = win[..count]
-            .iter()
-            .all(|w| (DRIFT..(65535 << 8) - DRIFT).contains(&w[2]));
         match M::KIND {
             ShadingKind::Flat => {
                 let e = [
@@ -1409,7 +1401,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     D::ENABLED,
                     stats,
                     widen,
-                    |sp, st| self.span_flat(sp, colour, plain, sink, depth, st, z_inside),
+                    |sp, st| self.span_flat(sp, colour, plain, sink, depth, st),
                 )
             }
             ShadingKind::Gouraud => {
@@ -1439,7 +1431,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     D::ENABLED,
                     stats,
                     widen,
-                    |sp, st| self.span_gouraud(sp, sink, depth, st, z_inside),
+                    |sp, st| self.span_gouraud(sp, sink, depth, st),
                 )
             }
             ShadingKind::Phong => {
@@ -1495,7 +1487,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         }
                         w
                     },
-                    |sp, st| self.span_phong(sp, sink, depth, st, z_inside),
+                    |sp, st| self.span_phong(sp, sink, depth, st),
                 )
             }
         }
@@ -1830,7 +1822,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
         let sh = FlatShader {
             plain,
@@ -1839,7 +1830,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             x: s.x0,
             y: s.y,
         };
-        self.send(s, sink, depth, stats, z_inside, sh)
+        self.send(s, sink, depth, stats, sh)
     }
 
     /// Gouraud spans of at least [`PAIR_SPAN`] pixels are coloured two
@@ -1849,8 +1840,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ///
     /// Undithered spans need no range check: vertex colours are at least
     /// ½ LSB (2¹⁵) inside their fields, more than a span's drift
-    /// ([`DRIFT`]) plus the pair shader's lane margin. Dithered ones are
-    /// clamped per pixel ([`ClampedGouraud`]).
+    /// ([`DRIFT`], plus ½ a pixel across at most a tile's columns) plus the
+    /// pair shader's lane margin. Dithered ones are clamped per pixel
+    /// ([`ClampedGouraud`]).
     #[inline(always)]
     fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
@@ -1858,32 +1850,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
-        const { assert!(DRIFT + LANE_MARGIN < 1 << 15) };
+        const { assert!(DRIFT + CLIP_LIMIT / 2 + LANE_MARGIN < 1 << 15) };
         let dither = self.r.options.dither;
         let c = [s.start[1], s.start[2], s.start[3]];
         let d = [s.step[1], s.step[2], s.step[3]];
         let n = (s.x1 - s.x0 + 1) as u32;
         if !dither {
             return if n >= PAIR_SPAN {
-                self.send(
-                    s,
-                    sink,
-                    depth,
-                    stats,
-                    z_inside,
-                    PairGouraud::new_inside(c, d, n),
-                )
+                self.send(s, sink, depth, stats, PairGouraud::new_inside(c, d, n))
             } else {
-                self.send(
-                    s,
-                    sink,
-                    depth,
-                    stats,
-                    z_inside,
-                    PackedGouraud::new_inside(c, d),
-                )
+                self.send(s, sink, depth, stats, PackedGouraud::new_inside(c, d))
             };
         }
         let sh = ClampedGouraud {
@@ -1893,7 +1870,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             x: s.x0,
             y: s.y,
         };
-        self.send(s, sink, depth, stats, z_inside, sh)
+        self.send(s, sink, depth, stats, sh)
     }
 
     #[inline(always)]
@@ -1903,7 +1880,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-        z_inside: bool,
     ) -> Result<(), RenderError<P::Error>> {
         let mut cur = [0i64; 6];
         let mut d = [0i64; 6];
@@ -1917,12 +1893,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             x: s.x0,
             y: s.y,
         };
-        self.send(s, sink, depth, stats, z_inside, sh)
+        self.send(s, sink, depth, stats, sh)
     }
 
-    /// One span through the depth test into the sink; `z_inside`: the
-    /// triangle's vertex depths are at least [`DRIFT`] inside the `u16`
-    /// range (so every span's depth is inside it).
+    /// One span through the depth test into the sink.
     #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
@@ -1930,14 +1904,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
-        z_inside: bool,
         sh: Sh,
     ) -> Result<(), RenderError<P::Error>> {
         let n = (s.x1 - s.x0 + 1) as u32;
+        // The depth attribute is `z_w·65535·2⁸ + 2⁷` (`window`); in
+        // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
+        // cleared 65535, and the span needs no clamp. Stepped by a rounded
+        // step it strays up to ½ a pixel from the plane, so the span's two
+        // ends decide (it is linear along the span); `|z| ≤ 2²⁵`,
+        // `|dz| ≤ 2²⁶`, `n ≤ 2¹¹` (a tile): no overflow.
+        let last = s.start[0] + (n as i64 - 1) * s.step[0];
+        let range = 0..65535 << 8;
         let z = SpanDepth {
             z: s.start[0],
             dz: s.step[0],
-            inside: z_inside,
+            inside: range.contains(&s.start[0]) && range.contains(&last),
         };
         let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
         stats.pixels = stats.pixels.saturating_add(w);

@@ -25,9 +25,12 @@
 //! are integers, so at every pixel they equal the same sum taken without
 //! a bound, which differs from the exact plane by at most `½(|c − c_o| +
 //! |r − r_o|) + 1` units, below 2¹¹ in the guard band. At a covered pixel
-//! the exact plane lies between the vertex values, so the stepped value is
-//! within 2⁷ of the caller's units ([`DRIFT`]) of that range: a caller
-//! whose values keep that margin inside its range needs no clamp.
+//! the exact plane lies between the vertex values, so a span's start,
+//! rounded to the caller's units, is within 2⁷ + ½ of that range
+//! ([`DRIFT`]). Along the span the caller steps by the gradient rounded to
+//! its units, which adds at most ½ a pixel: pixel `k` of a span (`k = 0`
+//! at its start) is within `DRIFT + k/2` of the range, below 2¹⁰ across a
+//! tile's 2 032 columns.
 
 use crate::rasterizer::Recip;
 
@@ -38,9 +41,10 @@ pub(crate) const GUARD: i32 = (1 << 14) - 16;
 /// times 2⁴, stay below 2³⁰.
 pub(crate) const ATTR: i32 = 1 << 25;
 
-/// How far a span's values stray from the range of the vertex values at a
-/// covered pixel, in the caller's units (see the module's text).
-pub(crate) const DRIFT: i32 = 1 << 7;
+/// How far a span's start strays from the range of the vertex values, in
+/// the caller's units; each further pixel adds at most ½ (see the module's
+/// text).
+pub(crate) const DRIFT: i32 = 1 << 8;
 
 /// A vertex: position in 1/16 pixel within ±[`GUARD`], attributes within
 /// ±[`ATTR`].

@@ -112,7 +112,7 @@ proptest! {
 
 /// The first pixel (row, column, attribute, value, allowed range) of the
 /// spans `rasterize_rows` gives whose attribute (span start plus steps)
-/// lies more than `DRIFT` outside the range of the vertex values; `None` if
+/// lies more than `DRIFT + k/2` (pixel `k` of the span) outside the range of the vertex values; `None` if
 /// there is none.
 #[allow(clippy::type_complexity)]
 fn first_beyond_drift(
@@ -123,9 +123,11 @@ fn first_beyond_drift(
     let mut bad = None;
     rasterize_rows(rv, vp, rows, false, |s| {
         for i in 0..2 {
-            let lo = rv.iter().map(|v| v.attr[i]).min().unwrap() - DRIFT;
-            let hi = rv.iter().map(|v| v.attr[i]).max().unwrap() + DRIFT;
             for k in 0..=(s.x1 - s.x0) as i64 {
+                // DRIFT at the start, and half a unit each pixel on.
+                let d = DRIFT + (k + 1) / 2;
+                let lo = rv.iter().map(|v| v.attr[i]).min().unwrap() - d;
+                let hi = rv.iter().map(|v| v.attr[i]).max().unwrap() + d;
                 let a = s.start[i] + k * s.step[i];
                 if !(lo..=hi).contains(&a) && bad.is_none() {
                     bad = Some((s.y, s.x0 + k as i32, i, a, lo, hi));
@@ -140,7 +142,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 4096, ..ProptestConfig::default() })]
 
     /// Every span keeps every attribute, at every pixel (start plus k
-    /// steps), within `DRIFT` of the vertex values' range: the promise
+    /// steps), within `DRIFT + k/2` of the vertex values' range: the promise
     /// that lets the renderer skip per-span range checks. Triangles up to
     /// 300 pixels across, slivers included, attributes up to the limit,
     /// the rows of a band or the whole viewport.
@@ -188,7 +190,7 @@ proptest! {
     /// Vertices at the edges of the limits (the guard band's edges,
     /// attributes ±2^25, mixed with ones near the viewport): the coverage
     /// is the oracle's, whole and in bands, and every covered pixel's
-    /// attributes (span start plus steps) lie within `DRIFT` of the vertex
+    /// attributes (span start plus steps) lie within `DRIFT + k/2` of the vertex
     /// values' range. In a debug build (the default for `cargo test`) any
     /// overflow on the way panics and fails the case.
     #[test]
