@@ -85,7 +85,7 @@ const B_BACK: u64 = 1 << 53;
 const COLOUR_MASK: u64 = (1 << 51) - 1;
 
 /// One vertex's per-frame data for the band renderer in cached mode: 20
-/// bytes (4-aligned), against 104 for a [`CachedVertex`].
+/// bytes (4-aligned), against 88 for a [`CachedVertex`].
 ///
 /// Window position (`x`, `y` in 1/16 pixel, clamped to ±2²⁸), depth
 /// attribute (`z_w·65535·2⁸ + 2⁷`, clamped to ±2³⁰), and one lit colour
@@ -260,7 +260,7 @@ pub struct Bands<'b> {
 /// The rows `[lo, hi]` of a triangle's pixel centres (from its window
 /// `y`s, 1/16 pixel).
 #[inline(always)]
-fn rows_of(y: [i64; 3]) -> (i64, i64) {
+fn rows_of(y: [i32; 3]) -> (i32, i32) {
     let miny = y[0].min(y[1]).min(y[2]);
     let maxy = y[0].max(y[1]).max(y[2]);
     ((miny + 7) >> 4, (maxy - 8) >> 4)
@@ -285,8 +285,8 @@ fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
     }
     let w = [c.win(0), c.win(1), c.win(2)];
     let a = area2(&w.map(|v| RasterVertex::<0> {
-        x: v[0],
-        y: v[1],
+        x: v[0].into(),
+        y: v[1].into(),
         attr: [],
     }));
     if a == 0 || (a > 0 && cull) {
@@ -294,11 +294,11 @@ fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
     }
     let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);
     let (xlo, xhi) = rows_of([w[0][0], w[1][0], w[2][0]]);
-    let (lo, hi) = (lo.max(vp.y0 as i64), hi.min(vp.y1 as i64));
-    if lo > hi || xlo > vp.x1 as i64 || xhi < vp.x0 as i64 {
+    let (lo, hi) = (lo.max(vp.y0), hi.min(vp.y1));
+    if lo > hi || xlo > vp.x1 || xhi < vp.x0 {
         return None;
     }
-    Some((lo as i32, hi as i32))
+    Some((lo, hi))
 }
 
 /// Corners from the compact [`BandVertex`] cache.
@@ -313,9 +313,9 @@ impl Corners for BandCorners<'_> {
         self.cache[self.idx[k]].c[1] & ((B_INSIDE >> 32) as u32) != 0
     }
     #[inline(always)]
-    fn win(&self, k: usize) -> [i64; 3] {
+    fn win(&self, k: usize) -> [i32; 3] {
         let v = &self.cache[self.idx[k]];
-        [v.x as i64, v.y as i64, v.z as i64]
+        [v.x, v.y, v.z]
     }
     fn clip<S: Specular, V: Viewer, L: LightSet>(
         &mut self,
@@ -659,11 +659,10 @@ fn prepare_cache<S: Specular, V: Viewer, L: LightSet>(
         let clip = f.proj.clip(f.eye_inline(i));
         let inside = clip[2] + clip[3] >= 0;
         let w = if inside { f.window(&clip) } else { [0; 3] };
-        // Window positions are clamped to ±2^28, depths to ±2^30: i32.
         *v = BandVertex {
-            x: w[0] as i32,
-            y: w[1] as i32,
-            z: w[2] as i32,
+            x: w[0],
+            y: w[1],
+            z: w[2],
             c: [0, 0],
         };
         if inside {
@@ -708,8 +707,8 @@ where
     // so a rejection by rows holds only if all three are in front (testing
     // the rows first, callgrind: S1 in cached 16-row bands 2.815 M →
     // 2.799 M).
-    let (lo, hi) = rows_of([v[0].y as i64, v[1].y as i64, v[2].y as i64]);
-    if (hi < f.rows.0 as i64 || lo > f.rows.1 as i64)
+    let (lo, hi) = rows_of([v[0].y, v[1].y, v[2].y]);
+    if (hi < f.rows.0 || lo > f.rows.1)
         && v[0].c[1] & v[1].c[1] & v[2].c[1] & ((B_INSIDE >> 32) as u32) != 0
     {
         return Ok(());
@@ -743,7 +742,7 @@ where
     };
     if c.inside(0) && c.inside(1) && c.inside(2) {
         let (lo, hi) = rows_of([c.win(0)[1], c.win(1)[1], c.win(2)[1]]);
-        if hi < f.rows.0 as i64 || lo > f.rows.1 as i64 {
+        if hi < f.rows.0 || lo > f.rows.1 {
             return Ok(());
         }
     }

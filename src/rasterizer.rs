@@ -533,11 +533,11 @@ pub fn rasterize_rows<const N: usize>(
         rows.0.max(clip.y0).max(cy - CLIP_LIMIT as i32) - cy,
         rows.1.min(clip.y1) - cy,
     );
-    let drawn = setup::draw(&s, c, r, |sp| {
+    let drawn = setup::draw(&s, c, r, (cx, cy), |sp| {
         f(&Span {
-            y: sp.y + cy,
-            x0: sp.x0 + cx,
-            x1: sp.x1 + cx,
+            y: sp.y,
+            x0: sp.x0,
+            x1: sp.x1,
             start: sp.start.map(i64::from),
             step: sp.step.map(i64::from),
         })

@@ -64,7 +64,7 @@ use crate::normalize::normalize;
 use crate::num::division::{floor_div, floor_div_all};
 use crate::num::widening::{mul_by_narrow, mul_narrow};
 use crate::rasterizer::{
-    coverage, ClipRect, Cover, RasterVertex, Span, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
+    coverage, ClipRect, Cover, RasterVertex, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
 };
 use crate::setup;
 use crate::span::{
@@ -392,7 +392,12 @@ const TINY_AREA: u64 = 256 * 2 * (TINY as u64 + 1);
 /// A polygon's pixel centres in the target: columns and rows (inclusive,
 /// rows limited to those drawn), and whether those rows are all of the
 /// box's rows in the viewport ([`Frame::pixel_box`]).
-type PixelBox = ((i64, i64), (i64, i64), bool);
+type PixelBox = ((i32, i32), (i32, i32), bool);
+
+/// A window position and depth attribute ([`Frame::window`]): `x`, `y` in
+/// 1/16 pixel within ±2²⁸, the depth within ±2³⁰, so every coordinate and
+/// its difference from a tile's centre (below 2²⁵) fits `i32`.
+type Win = [i32; 3];
 
 const F_PROJECTED: u8 = 1;
 const F_FRONT: u8 = 2;
@@ -400,7 +405,7 @@ const F_BACK: u8 = 4;
 const F_NORMAL: u8 = 8;
 
 /// One vertex's per-frame data, in a cache the caller provides (one per
-/// mesh vertex): 104 bytes (`i64` fields are 8-aligned on Cortex-M too).
+/// mesh vertex): 88 bytes (`i64` fields are 8-aligned on Cortex-M too).
 ///
 /// ```
 /// # use fixshade::camera::Camera;
@@ -432,10 +437,12 @@ pub struct CachedVertex {
     normal: Unit3,
     flags: u8,
     clip: [i64; 4],
-    win: [i64; 3],
+    win: Win,
     front: Shade,
     back: Shade,
 }
+
+const _: () = assert!(core::mem::size_of::<CachedVertex>() == 88);
 
 /// The largest target side in pixels.
 ///
@@ -843,8 +850,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
 /// The signed doubled area of the triangle of window positions `win[k]`,
 /// `k` in `corners` (see [`area2`](crate::rasterizer::area2)).
 #[inline(always)]
-fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
-    let [a, b, c] = corners.map(|j| win[j]);
+fn win_area(win: &[Win], corners: [usize; 3]) -> i64 {
+    let [a, b, c] = corners.map(|j| win[j].map(i64::from));
     // Window positions are within ±2^28 (`window` clamps them): the
     // differences fit i32, the products 2^58.
     mul_narrow(b[0] - a[0], c[1] - a[1]) - mul_narrow(b[1] - a[1], c[0] - a[0])
@@ -876,8 +883,8 @@ fn win_area(win: &[[i64; 3]], corners: [usize; 3]) -> i64 {
 /// further than the snapping, which the bound does not cover: such a
 /// triangle keeps its snapped orientation unless the bound asks.
 #[inline(always)]
-fn snap_may_flip(a: i64, w: &[[i64; 3]]) -> bool {
-    let d = |j: usize, k: usize, i: usize| (w[k][i] as i32).wrapping_sub(w[j][i] as i32);
+fn snap_may_flip(a: i64, w: &[Win]) -> bool {
+    let d = |j: usize, k: usize, i: usize| w[k][i].wrapping_sub(w[j][i]);
     let side = |j: usize, k: usize| d(j, k, 0).unsigned_abs() + d(j, k, 1).unsigned_abs();
     2 * a.unsigned_abs() <= u64::from(side(0, 1) + side(1, 2) + side(2, 0) + 2)
 }
@@ -952,7 +959,7 @@ pub(crate) trait Corners {
     /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
     fn inside(&self, k: usize) -> bool;
     /// Window position and depth of corner `k` (in front of the near plane).
-    fn win(&self, k: usize) -> [i64; 3];
+    fn win(&self, k: usize) -> Win;
     /// Clip-space position of corner `k` (asked only when the triangle
     /// crosses the near plane).
     fn clip<S: Specular, V: Viewer, L: LightSet>(
@@ -992,7 +999,7 @@ impl Corners for CacheCorners<'_> {
         c.clip[2] + c.clip[3] >= 0
     }
     #[inline(always)]
-    fn win(&self, k: usize) -> [i64; 3] {
+    fn win(&self, k: usize) -> Win {
         self.cache[self.slot[k]].win
     }
     #[inline(always)]
@@ -1200,7 +1207,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// numerator is within ±(2⁶² + 2⁵⁶), so it minus the divisor `2w`
     /// (below 2³³) stays within `i64` ([`floor_div_all`]'s conditions).
     #[inline]
-    pub(crate) fn window(&self, c: &[i64; 4]) -> [i64; 3] {
+    pub(crate) fn window(&self, c: &[i64; 4]) -> Win {
         let w = c[3];
         if w <= 0 {
             return [0, 0, 0];
@@ -1229,9 +1236,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             ]
         };
         [
-            (x + hw).clamp(-COORD_LIMIT, COORD_LIMIT),
-            (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT),
-            (z + (1 << 23)).clamp(-(1 << 30), 1 << 30),
+            (x + hw).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
+            (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
+            (z + (1 << 23)).clamp(-(1 << 30), 1 << 30) as i32,
         ]
     }
 
@@ -1305,7 +1312,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // The polygon after near clipping (Sutherland–Hodgman, one
             // plane).
             let mut poly = [PolyVert::Orig(0); 4];
-            let mut win = [[0i64; 3]; 4];
+            let mut win = [[0i32; 3]; 4];
             let mut count = 0;
             stats.clipped = stats.clipped.saturating_add(1);
             let clip = [c.clip(self, 0), c.clip(self, 1), c.clip(self, 2)];
@@ -1337,7 +1344,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             // Facing is shared by every piece: decided (and culled) once,
             // from the unsnapped triangle; a piece that snapping turned
-            // the other way draws nothing (`fan`).
+            // the other way draws nothing (`pieces`).
             let a = clip_orientation(&clip);
             if self.rejects(a, &win[..count]) {
                 return Ok(());
@@ -1368,6 +1375,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         // past the viewport) has the polygon clipped to it, from its
         // clip-space corners.
         let guarded = win[..count].iter().all(|w| self.in_guard(w, D::ENABLED));
+        let direct = tested && guarded;
         let mut clip_buf = [[0i64; 4]; 4];
         let clips = if guarded {
             None
@@ -1393,14 +1401,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 let colour = self.r.lighting.shade(centroid(e), n);
                 let plain = RawU16::from(colour.to_rgb565()).into_inner();
                 stats.lit = stats.lit.saturating_add(1);
-                let verts = raster_verts::<1>(poly, &win, |_| [0]);
-                self.fan(
-                    &verts[..count],
+                self.pieces(
+                    poly,
+                    &win,
+                    direct,
                     clips,
                     front,
                     D::ENABLED,
                     stats,
-                    widen,
+                    |_| [0],
                     |sp, st| self.span_flat(sp, colour, plain, sink, depth, st),
                 )
             }
@@ -1413,24 +1422,25 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     c.shade(self, 1, lit_back, stats),
                     c.shade(self, 2, lit_back, stats),
                 ];
-                let verts = raster_verts::<4>(poly, &win, |i| {
-                    let b = cols[i].to_bits();
-                    // Scaled so that the 5/6-bit channel is `v >> 16`,
-                    // rounded as SPEC.md 6 says: v·31 + ½ (≤ 2^21).
-                    [
-                        0,
-                        (b[0] * 31 + (1 << 15)) as i64,
-                        (b[1] * 63 + (1 << 15)) as i64,
-                        (b[2] * 31 + (1 << 15)) as i64,
-                    ]
-                });
-                self.fan(
-                    &verts[..count],
+                self.pieces(
+                    poly,
+                    &win,
+                    direct,
                     clips,
                     front,
                     D::ENABLED,
                     stats,
-                    widen,
+                    |i| {
+                        let b = cols[i].to_bits();
+                        // Scaled so that the 5/6-bit channel is `v >> 16`,
+                        // rounded as SPEC.md 6 says: v·31 + ½ (≤ 2^21).
+                        [
+                            0,
+                            (b[0] * 31 + (1 << 15)) as i64,
+                            (b[1] * 63 + (1 << 15)) as i64,
+                            (b[2] * 31 + (1 << 15)) as i64,
+                        ]
+                    },
                     |sp, st| self.span_gouraud(sp, sink, depth, st),
                 )
             }
@@ -1454,40 +1464,42 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     }
                 }
                 let shift = (64 - spread.leading_zeros()).saturating_sub(24);
-                let verts = raster_verts::<7>(poly, &win, |i| {
-                    let (e, n) = en[i];
-                    let n = if lit_back { n.neg() } else { n }.to_bits();
-                    let e = e.to_bits();
-                    // Normals get 10 more fractional bits (Q.24, at most 2²⁴).
-                    [
-                        0,
-                        (n[0] as i64) << 10,
-                        (n[1] as i64) << 10,
-                        (n[2] as i64) << 10,
-                        (e[0] as i64 - origin[0]) >> shift,
-                        (e[1] as i64 - origin[1]) >> shift,
-                        (e[2] as i64 - origin[2]) >> shift,
-                    ]
-                });
-                self.fan(
-                    &verts[..count],
+                self.pieces(
+                    poly,
+                    &win,
+                    direct,
                     clips,
                     front,
                     D::ENABLED,
                     stats,
-                    |s| {
-                        let mut w = widen(s);
-                        for k in 1..4 {
-                            w.start[k] <<= 2;
-                            w.step[k] <<= 2;
-                        }
-                        for k in 4..7 {
-                            w.start[k] = (w.start[k] << shift) + origin[k - 4];
-                            w.step[k] <<= shift;
-                        }
-                        w
+                    |i| {
+                        let (e, n) = en[i];
+                        let n = if lit_back { n.neg() } else { n }.to_bits();
+                        let e = e.to_bits();
+                        // Normals get 10 more fractional bits (Q.24, at most 2²⁴).
+                        [
+                            0,
+                            (n[0] as i64) << 10,
+                            (n[1] as i64) << 10,
+                            (n[2] as i64) << 10,
+                            (e[0] as i64 - origin[0]) >> shift,
+                            (e[1] as i64 - origin[1]) >> shift,
+                            (e[2] as i64 - origin[2]) >> shift,
+                        ]
                     },
-                    |sp, st| self.span_phong(sp, sink, depth, st),
+                    |sp, st| {
+                        // Back to the shader's units: normals in `Q.26`,
+                        // positions `I8F24` raw.
+                        let mut cur = [0i64; 6];
+                        let mut d = [0i64; 6];
+                        for k in 0..3 {
+                            cur[k] = (sp.start[k + 1] as i64) << 2;
+                            d[k] = (sp.step[k + 1] as i64) << 2;
+                            cur[k + 3] = ((sp.start[k + 4] as i64) << shift) + origin[k];
+                            d[k + 3] = (sp.step[k + 4] as i64) << shift;
+                        }
+                        self.span_phong(sp, cur, d, sink, depth, st)
+                    },
                 )
             }
         }
@@ -1497,7 +1509,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// face, y down) is dropped: no area, a culled back face, or no pixel
     /// centre inside the target.
     #[inline(always)]
-    fn rejects(&self, a: i64, win: &[[i64; 3]]) -> bool {
+    fn rejects(&self, a: i64, win: &[Win]) -> bool {
         a == 0 || (a > 0 && self.r.options.cull) || self.pixel_box(win).is_none()
     }
 
@@ -1511,17 +1523,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// them here spares 396 of 4 952 vertex lightings and 1 812 triangles'
     /// raster vertices.)
     #[inline(always)]
-    fn tiny_cover(&self, a: i64, w: &[[i64; 3]; 4]) -> Cover {
+    fn tiny_cover(&self, a: i64, w: &[Win; 4]) -> Cover {
         let Some((xs, ys, whole)) = self.pixel_box(&w[..3]) else {
             return Cover::Mask(0);
         };
         // Sides within the viewport's (at most `MAX_TARGET_SIDE`): the
         // product fits. Oriented as the set-up orients it (positive area).
-        if whole && mul_narrow(xs.1 - xs.0 + 1, ys.1 - ys.0 + 1) <= TINY {
+        let side = |s: (i32, i32)| i64::from(s.1 - s.0 + 1);
+        if whole && mul_narrow(side(xs), side(ys)) <= TINY {
+            let wide = |s: (i32, i32)| (i64::from(s.0), i64::from(s.1));
             Cover::Mask(coverage(
-                if a < 0 { [0, 2, 1] } else { [0, 1, 2] }.map(|k| (w[k][0], w[k][1])),
-                xs,
-                ys,
+                if a < 0 { [0, 2, 1] } else { [0, 1, 2] }
+                    .map(|k| (i64::from(w[k][0]), i64::from(w[k][1]))),
+                wide(xs),
+                wide(ys),
             ))
         } else {
             Cover::Skip
@@ -1535,8 +1550,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// triangles their lighting and set-up. Sample `16x + 8` lies in
     /// `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
     #[inline]
-    fn pixel_box(&self, win: &[[i64; 3]]) -> Option<PixelBox> {
-        let (mut minx, mut maxx, mut miny, mut maxy) = (i64::MAX, i64::MIN, i64::MAX, i64::MIN);
+    fn pixel_box(&self, win: &[Win]) -> Option<PixelBox> {
+        let (mut minx, mut maxx, mut miny, mut maxy) = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
         for v in win {
             minx = minx.min(v[0]);
             maxx = maxx.max(v[0]);
@@ -1545,16 +1560,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let c = self.viewport;
         // ⌈(m − 8)/16⌉ = (m + 7) >> 4, ⌊(m − 8)/16⌋ = (m − 8) >> 4 (arithmetic).
-        let (u_lo, u_hi) = (
-            ((minx + 7) >> 4).max(c.x0 as i64),
-            ((maxx - 8) >> 4).min(c.x1 as i64),
-        );
-        let (v_lo, v_hi) = (
-            ((miny + 7) >> 4).max(c.y0 as i64),
-            ((maxy - 8) >> 4).min(c.y1 as i64),
-        );
-        let (x_lo, x_hi) = (u_lo.max(self.cols.0 as i64), u_hi.min(self.cols.1 as i64));
-        let (y_lo, y_hi) = (v_lo.max(self.rows.0 as i64), v_hi.min(self.rows.1 as i64));
+        let (u_lo, u_hi) = (((minx + 7) >> 4).max(c.x0), ((maxx - 8) >> 4).min(c.x1));
+        let (v_lo, v_hi) = (((miny + 7) >> 4).max(c.y0), ((maxy - 8) >> 4).min(c.y1));
+        let (x_lo, x_hi) = (u_lo.max(self.cols.0), u_hi.min(self.cols.1));
+        let (y_lo, y_hi) = (v_lo.max(self.rows.0), v_hi.min(self.rows.1));
         (x_lo <= x_hi && y_lo <= y_hi).then_some((
             (x_lo, x_hi),
             (y_lo, y_hi),
@@ -1567,12 +1576,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// inside the set-up's range): such a corner goes to the 32-bit set-up
     /// as it is.
     #[inline(always)]
-    fn in_guard(&self, w: &[i64; 3], depth: bool) -> bool {
+    fn in_guard(&self, w: &Win, depth: bool) -> bool {
         let (ox, oy) = self.origin;
-        let g = setup::GUARD as u64;
-        (w[0] - ox).unsigned_abs() <= g
-            && (w[1] - oy).unsigned_abs() <= g
-            && (!depth || w[2] < Z_GUARD)
+        let g = setup::GUARD as u32;
+        (w[0] - ox as i32).unsigned_abs() <= g
+            && (w[1] - oy as i32).unsigned_abs() <= g
+            && (!depth || w[2] < setup::ATTR)
     }
 
     /// Calls `f` with the frame limited to each tile ([`TILE`]) that the
@@ -1725,86 +1734,142 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             *a += r as i64;
         }
-        attr[0] = w[2];
+        attr[0] = w[2].into();
         (
             q,
             RasterVertex {
-                x: w[0],
-                y: w[1],
+                x: w[0].into(),
+                y: w[1].into(),
                 attr,
             },
         )
     }
 
-    /// Rasterizes the fan `(p0, p1, p2), (p0, p2, p3), …` of polygon
-    /// `verts` (clip-space corners `clips`, given when a corner lies
-    /// outside the guard band: the polygon is clipped to it first) in 32
-    /// bits ([`setup::draw`]), calling `span` for each span until it fails.
-    /// Every piece faces as the polygon does (`front`) or draws nothing:
-    /// culling was decided once, and a piece that snapping turned over is
-    /// dropped. `unpack` turns the set-up's 32-bit span into the shaders'.
-    #[allow(clippy::too_many_arguments)]
+    /// A set-up vertex from a window position inside the guard band
+    /// (`in_guard`) and its attributes (depth first): relative to the
+    /// tile's centre. Without a depth test the depth is not drawn, and not
+    /// bounded by the guard band: left out of the set-up.
     #[inline(always)]
-    fn fan<const N: usize, E>(
+    fn setup_vertex<const N: usize>(
         &self,
-        verts: &[RasterVertex<N>],
-        clips: Option<&[[i64; 4]]>,
-        front: bool,
+        x: i32,
+        y: i32,
+        mut attr: [i64; N],
         depth: bool,
+    ) -> setup::Vertex<N> {
+        if !depth {
+            attr[0] = 0;
+        }
+        let (ox, oy) = self.origin;
+        setup::Vertex {
+            x: x - ox as i32,
+            y: y - oy as i32,
+            a: attr.map(|a| {
+                debug_assert!(a.unsigned_abs() <= setup::ATTR as u64);
+                a as i32
+            }),
+        }
+    }
+
+    /// Sets up triangle `v` ([`Frame::setup_vertex`]) on the tile's columns
+    /// and the rows drawn, calling `span` for each span until it fails.
+    #[inline(always)]
+    fn set_up<const N: usize, E>(
+        &self,
+        v: &[setup::Vertex<N>; 3],
         stats: &mut DrawStats,
-        unpack: impl Fn(&setup::Span<N>) -> Span<N>,
-        mut span: impl FnMut(&Span<N>, &mut DrawStats) -> Result<(), E>,
+        span: &mut impl FnMut(&setup::Span<N>, &mut DrawStats) -> Result<(), E>,
     ) -> Result<(), E> {
-        let mut clipped = [verts[0]; 9];
-        let poly = match clips {
-            None => verts,
-            Some(c) => {
-                let n = self.guard_clip(verts, c, depth, &mut clipped);
-                &clipped[..n]
-            }
-        };
         let (ox, oy) = self.origin;
         let (cx, cy) = ((ox >> 4) as i32, (oy >> 4) as i32);
         let cols = (self.cols.0 - cx, self.cols.1 - cx);
         let rows = (self.rows.0 - cy, self.rows.1 - cy);
         let mut res = Ok(());
-        for k in 1..poly.len().saturating_sub(1) {
-            let v = [&poly[0], &poly[k], &poly[k + 1]].map(|p| {
-                debug_assert!(self.in_guard(&[p.x, p.y, p.attr[0]], depth));
-                let mut a = p.attr;
-                // Without a depth test the depth is not drawn, and not
-                // bounded by the guard band: left out of the set-up.
-                if !depth {
-                    a[0] = 0;
-                }
-                setup::Vertex {
-                    x: (p.x - ox) as i32,
-                    y: (p.y - oy) as i32,
-                    a: a.map(|a| {
-                        debug_assert!(a.unsigned_abs() <= setup::ATTR as u64);
-                        a as i32
-                    }),
-                }
-            });
-            // Inside the guard band the doubled area fits `i32`
-            // (`setup`'s ranges); negative is a front face (y down).
-            let area =
-                (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-            if area == 0 || (area < 0) != front {
-                continue;
+        let drawn = setup::draw(v, cols, rows, (cx, cy), |s| {
+            if res.is_ok() {
+                res = span(s, stats);
             }
-            let drawn = setup::draw(&v, cols, rows, |s| {
-                if res.is_ok() {
-                    let mut sp = unpack(s);
-                    sp.y += cy;
-                    sp.x0 += cx;
-                    sp.x1 += cx;
-                    res = span(&sp, stats);
+        });
+        if drawn {
+            stats.drawn = stats.drawn.saturating_add(1);
+        }
+        res
+    }
+
+    /// Draws the polygon `poly` (window positions `win`, attributes of
+    /// its original corners from `of`, depth first): the triangle as it
+    /// is when `direct` (unclipped, every corner inside the guard band),
+    /// else the fan `(p0, p1, p2), (p0, p2, p3), …` of its pieces, the
+    /// polygon clipped to the guard band first when a corner lies outside
+    /// it (`clips`: its clip-space corners). Every piece faces as the
+    /// polygon does (`front`) or draws nothing: culling was decided once,
+    /// and a piece that snapping turned over is dropped. Calls `span` for
+    /// each span until it fails. (One set-up call site: the span code is
+    /// inlined into it once.)
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn pieces<const N: usize, E>(
+        &self,
+        poly: &[PolyVert],
+        win: &[Win; 4],
+        direct: bool,
+        clips: Option<&[[i64; 4]]>,
+        front: bool,
+        depth: bool,
+        stats: &mut DrawStats,
+        of: impl Fn(usize) -> [i64; N],
+        mut span: impl FnMut(&setup::Span<N>, &mut DrawStats) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let at = |k: usize| {
+            let mut a = of(k);
+            a[0] = win[k][2].into();
+            self.setup_vertex(win[k][0], win[k][1], a, depth)
+        };
+        let (verts, mut clipped);
+        let (fan, tris): (&[RasterVertex<N>], usize) = if direct {
+            (&[], 1)
+        } else {
+            verts = raster_verts::<N>(poly, win, &of);
+            let p = match clips {
+                None => &verts[..poly.len()],
+                Some(c) => {
+                    clipped = [verts[0]; 9];
+                    let n = self.guard_clip(&verts[..poly.len()], c, depth, &mut clipped);
+                    &clipped[..n]
                 }
-            });
-            if drawn {
-                stats.drawn = stats.drawn.saturating_add(1);
-            }
+            };
+            (p, p.len().saturating_sub(2))
+        };
+        let none = setup::Vertex {
+            x: 0,
+            y: 0,
+            a: [0; N],
+        };
+        let first = if direct {
+            [at(0), at(1), at(2)]
+        } else {
+            [none; 3]
+        };
+        let mut res = Ok(());
+        for k in 0..tris {
+            let v = if direct {
+                first
+            } else {
+                let v = [&fan[0], &fan[k + 1], &fan[k + 2]].map(|p| {
+                    debug_assert!(self.in_guard(&[p.x, p.y, p.attr[0]].map(|v| v as i32), depth));
+                    // Inside the guard band: positions and attributes fit `i32`.
+                    self.setup_vertex(p.x as i32, p.y as i32, p.attr, depth)
+                });
+                // Inside the guard band the doubled area fits `i32`
+                // (`setup`'s ranges); negative is a front face (y down).
+                let area =
+                    (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+                if area == 0 || (area < 0) != front {
+                    continue;
+                }
+                v
+            };
+            res = self.set_up(&v, stats, &mut span);
             if res.is_err() {
                 break;
             }
@@ -1816,7 +1881,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     #[allow(clippy::too_many_arguments)]
     fn span_flat<P: PixelSink, D: DepthTest>(
         &self,
-        s: &Span<1>,
+        s: &setup::Span<1>,
         colour: Shade,
         plain: u16,
         sink: &mut P,
@@ -1846,7 +1911,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     #[inline(always)]
     fn span_gouraud<P: PixelSink, D: DepthTest>(
         &self,
-        s: &Span<4>,
+        s: &setup::Span<4>,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -1864,8 +1929,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
         }
         let sh = ClampedGouraud {
-            c,
-            d,
+            c: c.map(i64::from),
+            d: d.map(i64::from),
             dither,
             x: s.x0,
             y: s.y,
@@ -1873,18 +1938,19 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         self.send(s, sink, depth, stats, sh)
     }
 
+    /// A Phong span: `cur` and `d` are the normal (`Q.26`) and the eye
+    /// position (`I8F24` raw) at its first pixel and their steps.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn span_phong<P: PixelSink, D: DepthTest>(
         &self,
-        s: &Span<7>,
+        s: &setup::Span<7>,
+        cur: [i64; 6],
+        d: [i64; 6],
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), RenderError<P::Error>> {
-        let mut cur = [0i64; 6];
-        let mut d = [0i64; 6];
-        cur.copy_from_slice(&s.start[1..]);
-        d.copy_from_slice(&s.step[1..]);
         let sh = PhongPixels {
             lighting: &self.r.lighting,
             cur,
@@ -1896,11 +1962,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         self.send(s, sink, depth, stats, sh)
     }
 
-    /// One span through the depth test into the sink.
+    /// One span through the depth test (attribute 0) into the sink.
     #[inline(always)]
     fn send<const N: usize, P: PixelSink, D: DepthTest, Sh: SpanShader>(
         &self,
-        s: &Span<N>,
+        s: &setup::Span<N>,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -1911,30 +1977,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         // `0 .. 65535·2⁸` its `>> 8` is 0 ..= 65534, a `u16` below the
         // cleared 65535, and the span needs no clamp. Stepped by a rounded
         // step it strays up to ½ a pixel from the plane, so the span's two
-        // ends decide (it is linear along the span); `|z| ≤ 2²⁵`,
-        // `|dz| ≤ 2²⁶`, `n ≤ 2¹¹` (a tile): no overflow.
-        let last = s.start[0] + (n as i64 - 1) * s.step[0];
+        // ends decide (it is linear along the span). Both ends lie within
+        // `±(ATTR + DRIFT + 2¹⁰)` (`setup`'s ranges, `n` at most a tile's
+        // 2 032 columns), inside `i32`: the wrapping sum is that value.
+        let (z, dz) = (s.start[0], s.step[0]);
+        let last = z.wrapping_add((n as i32 - 1).wrapping_mul(dz));
         let range = 0..65535 << 8;
         let z = SpanDepth {
-            z: s.start[0],
-            dz: s.step[0],
-            inside: range.contains(&s.start[0]) && range.contains(&last),
+            z: z as i64,
+            dz: dz as i64,
+            inside: range.contains(&z) && range.contains(&last),
         };
         let w = emit(sink, depth, s.y, s.x0, n, z, sh).map_err(RenderError::Target)?;
         stats.pixels = stats.pixels.saturating_add(w);
         Ok(())
-    }
-}
-
-/// The set-up's span as the shaders take it (`i64` attributes).
-#[inline(always)]
-fn widen<const N: usize>(s: &setup::Span<N>) -> Span<N> {
-    Span {
-        y: s.y,
-        x0: s.x0,
-        x1: s.x1,
-        start: s.start.map(i64::from),
-        step: s.step.map(i64::from),
     }
 }
 
@@ -1955,8 +2011,8 @@ pub const PAIR_SPAN: u32 = 16;
 /// clipping does) for new ones.
 fn raster_verts<const N: usize>(
     poly: &[PolyVert],
-    win: &[[i64; 3]; 4],
-    of: impl Fn(usize) -> [i64; N],
+    win: &[Win; 4],
+    of: &impl Fn(usize) -> [i64; N],
 ) -> [RasterVertex<N>; 4] {
     let mut out = [RasterVertex {
         x: 0,
@@ -1975,10 +2031,10 @@ fn raster_verts<const N: usize>(
                 m
             }
         };
-        attr[0] = win[k][2];
+        attr[0] = win[k][2].into();
         out[k] = RasterVertex {
-            x: win[k][0],
-            y: win[k][1],
+            x: win[k][0].into(),
+            y: win[k][1].into(),
             attr,
         };
     }

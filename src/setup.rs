@@ -125,14 +125,17 @@ pub(crate) struct Span<const N: usize> {
 }
 
 /// Sets up the triangle `v` and calls `f` for each non-empty span on rows
-/// `rows.0 ..= rows.1` and columns `cols.0 ..= cols.1`. Either orientation
-/// is drawn; a triangle of no area draws nothing. Returns whether the
-/// triangle was set up (it has area and a sample row among `rows`).
+/// `rows.0 ..= rows.1` and columns `cols.0 ..= cols.1`, its column and row
+/// moved by `at` (the guard band's centre in the caller's pixels). Either
+/// orientation is drawn; a triangle of no area draws nothing. Returns
+/// whether the triangle was set up (it has area and a sample row among
+/// `rows`).
 #[inline(always)]
 pub(crate) fn draw<const N: usize>(
     v: &[Vertex<N>; 3],
     cols: (i32, i32),
     rows: (i32, i32),
+    at: (i32, i32),
     mut f: impl FnMut(&Span<N>),
 ) -> bool {
     // Sorted top to bottom.
@@ -166,10 +169,7 @@ pub(crate) fn draw<const N: usize>(
     let recip = Recip::new(area.unsigned_abs() as i64);
     // The pixel holding vertex 0 and the offset of its centre from it.
     let (co, ro) = (v[0].x >> 4, v[0].y >> 4);
-    let (ox, oy) = (
-        (16 * co + 8 - v[0].x) as i128,
-        (16 * ro + 8 - v[0].y) as i128,
-    );
+    let (ox, oy) = ((16 * co + 8 - v[0].x) as i64, (16 * ro + 8 - v[0].y) as i64);
     let mut gx = [0i32; N];
     let mut gy = [0i32; N];
     let mut base = [0i32; N];
@@ -180,7 +180,9 @@ pub(crate) fn draw<const N: usize>(
         let d2 = (v[2].a[k] - v[0].a[k]) as i64;
         let nx = d1 * dy2 as i64 - d2 * dy1 as i64;
         let ny = d2 * dx1 as i64 - d1 * dx2 as i64;
-        let (mut x, mut y) = (recip.div_i64(nx, 8), recip.div_i64(ny, 8));
+        // The quotients are below 2⁵⁰ (an area of at least 1), their
+        // products with the offsets below 2⁵⁴: `i64`.
+        let (mut x, mut y) = (recip.div_i64(nx, 8) as i64, recip.div_i64(ny, 8) as i64);
         if area < 0 {
             (x, y) = (-x, -y);
         }
@@ -189,7 +191,7 @@ pub(crate) fn draw<const N: usize>(
         gy[k] = y as i32;
         // The plane at pixel (co, ro)'s centre, 8 sixteenths at most from
         // vertex 0 on each axis.
-        let at = ((v[0].a[k] as i128) << 4) + ((x * ox + y * oy + 8) >> 4);
+        let at = ((v[0].a[k] as i64) << 4) + ((x * ox + y * oy + 8) >> 4);
         base[k] = at as i32;
     }
 
@@ -235,9 +237,9 @@ pub(crate) fn draw<const N: usize>(
                 start[k] = round(row[k].wrapping_add(gx[k].wrapping_mul(lo - co)));
             }
             f(&Span {
-                y,
-                x0: lo,
-                x1: hi,
+                y: y + at.1,
+                x0: lo + at.0,
+                x1: hi + at.0,
                 start,
                 step,
             });
@@ -329,7 +331,7 @@ mod tests {
             });
             let want = oracle(&v, 64, 48);
             let mut got = Vec::new();
-            draw(&v, (0, 63), (0, 47), |s| got.push(*s));
+            draw(&v, (0, 63), (0, 47), (0, 0), |s| got.push(*s));
             assert_eq!(want.len(), got.len(), "{v:?}");
             spans += got.len();
             for (w, g) in want.iter().zip(&got) {

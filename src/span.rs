@@ -557,19 +557,22 @@ impl PackedGouraud {
                 return None;
             }
         }
-        Some(Self::new_inside(c, d))
+        // Inside their fields: each value fits `i32`, and so does each step
+        // of a span of two pixels or more (a single pixel's is not used).
+        let d = if n > 1 { d.map(|v| v as i32) } else { [0; 3] };
+        Some(Self::new_inside(c.map(|v| v as i32), d))
     }
 
     /// As [`PackedGouraud::new`] for channels the caller knows to stay
     /// inside their fields on the whole span (a span of a bounded triangle,
     /// see [`crate::render`]): no check.
     #[inline(always)]
-    pub(crate) fn new_inside(c: [i64; 3], d: [i64; 3]) -> PackedGouraud {
-        let pack = |v: [i64; 3]| {
-            (v[0] as u64)
+    pub(crate) fn new_inside(c: [i32; 3], d: [i32; 3]) -> PackedGouraud {
+        let pack = |v: [i32; 3]| {
+            (v[0] as i64 as u64)
                 .wrapping_shl(43)
-                .wrapping_add((v[1] as u64).wrapping_shl(21))
-                .wrapping_add(v[2] as u64)
+                .wrapping_add((v[1] as i64 as u64).wrapping_shl(21))
+                .wrapping_add(v[2] as i64 as u64)
         };
         PackedGouraud {
             acc: pack(c),
@@ -729,20 +732,23 @@ impl PairGouraud {
                 return None;
             }
         }
-        Some(Self::new_inside(c, d, n))
+        // Inside their fields: each value fits `i32`, and so does each step
+        // of a span of two pixels or more (a single pixel's is not used).
+        let d = if n > 1 { d.map(|v| v as i32) } else { [0; 3] };
+        Some(Self::new_inside(c.map(|v| v as i32), d, n))
     }
 
     /// As [`PairGouraud::new`] for channels the caller knows to stay at
     /// least `LANE_MARGIN` inside their fields on the whole span: no check.
     #[inline(always)]
-    pub(crate) fn new_inside(c: [i64; 3], d: [i64; 3], n: u32) -> PairGouraud {
+    pub(crate) fn new_inside(c: [i32; 3], d: [i32; 3], n: u32) -> PairGouraud {
         // Both ends inside: |c| < 2^22, and |d| < 2^22 unless n = 1 (then
         // the step is never used).
-        let d = if n > 1 { d.map(|v| v as i32) } else { [0; 3] };
+        let d = if n > 1 { d } else { [0; 3] };
         let mut sh = PairGouraud {
             lanes: [0; 3],
             step: [0; 3],
-            anchor: c.map(|v| v as i32),
+            anchor: c,
             d,
             pairs_left: 0,
             upper: false,
