@@ -1,7 +1,7 @@
 //! Every choice the kernel makes by target, in one place.
 //!
 //! The rest of the crate asks named questions ([`SOFT_MUL64`],
-//! [`wide_pointer`], [`armv7m`], …) and calls named operations
+//! [`wide_pointer`], [`armv7m`], [`hardware_div32`], …) and calls named operations
 //! ([`pack_565_pair`], [`keep_loop_rolled`]); the `cfg`s on the target, the
 //! inline assembly and the optimisation barriers that answer them live
 //! here only. Every answer is a constant, so the branch not taken is
@@ -28,6 +28,13 @@ pub(crate) const SOFT_MUL64: bool = cfg!(fixshade_soft_mul64);
 /// only 32-bit numbers in hardware. Where this holds, several quotients by
 /// one divisor share one reciprocal instead.
 pub(crate) const SOFT_DIV64: bool = cfg!(fixshade_soft_div64);
+
+/// The core divides 32-bit numbers in one instruction: every target but
+/// ARMv6-M (the Cortex-M0 and M0+), told apart as in [`armv7m`].
+#[inline(always)]
+pub(crate) const fn hardware_div32() -> bool {
+    !cfg!(all(target_arch = "arm", not(target_has_atomic = "32")))
+}
 
 /// The target's pointers, and so its general registers, are 64 bits wide:
 /// 64-bit multiplies and checked products are single instructions there,

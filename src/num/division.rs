@@ -114,8 +114,55 @@ fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
     ((((a >> 16) * b) as u64) << 16) + ((a & 0xFFFF) * b) as u64
 }
 
-/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)` (a value in `(2³¹, 2³²]`) without a
-/// division, for the targets without a 64-bit divide; `Y = 2⁶³/d`.
+/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)` (a value in `(2³¹, 2³²]`), for the
+/// targets without a 64-bit divide: [`recip63_by_digits`] where the core
+/// divides 32-bit numbers, else [`recip63_newton`] (the same value).
+#[inline]
+pub(crate) fn recip63(d: u32) -> u64 {
+    if platform::hardware_div32() {
+        recip63_by_digits(d)
+    } else {
+        recip63_newton(d)
+    }
+}
+
+/// [`recip63`] as a long division in two 16-bit digits, each from one
+/// 32-bit division by the divisor's high half `v₁ = ⌊d/2¹⁶⌋ ≥ 2¹⁵` and
+/// corrected down by the low half `v₀` (Knuth's algorithm D, base 2¹⁶).
+///
+/// The numerator's digits are `2³¹, 0, 0`. Digit 1: `q̂ = ⌊2³¹/v₁⌋ ≤ 2¹⁶`
+/// with remainder `r̂`; while `q̂ ≥ 2¹⁶` or `q̂·v₀ > r̂·2¹⁶` (and `r̂ < 2¹⁶`)
+/// it is one too large. The partial remainder `2⁴⁷ − q₁·d` is below
+/// `d < 2³²`, so it is exact modulo 2³² (`2⁴⁷ ≡ 0`). Digit 0 likewise, from
+/// that remainder (below `d`, so `q̂ ≤ 2¹⁶ + 2`). The normalised divisor
+/// (`d ≥ 2³¹`) bounds each estimate to at most two above the digit. The
+/// test's product is formed only for `q̂ < 2¹⁶` (below 2³²), and `r̂·2¹⁶`
+/// only while `r̂ < 2¹⁶`.
+#[inline]
+fn recip63_by_digits(d: u32) -> u64 {
+    debug_assert!(d >= 1 << 31);
+    if d == 1 << 31 {
+        // Y = 2^32, a digit pair past 2^32 − 1.
+        return 1 << 32;
+    }
+    let (v1, v0) = (d >> 16, d & 0xFFFF);
+    let digit = |n: u32| {
+        let (mut q, mut r) = (n / v1, n % v1);
+        while q >> 16 != 0 || q * v0 > r << 16 {
+            q -= 1;
+            r += v1;
+            if r >> 16 != 0 {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(1 << 31);
+    let q0 = digit(q1.wrapping_mul(d).wrapping_neg());
+    ((q1 as u64) << 16) | q0 as u64
+}
+
+/// [`recip63`] without a division; `Y = 2⁶³/d`.
 ///
 /// 1. Seed: the chord between the two [`RECIP_NODES`] around `d`. `Y` is
 ///    convex in `d`, so the chord's error is at most `(2⁻⁶)²/8 · Y''`,
@@ -128,7 +175,7 @@ fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
 ///    `e − δ·d` exactly, which at most two steps of one `d` bring into
 ///    `[0, d)`.
 #[inline]
-pub(crate) fn recip63(d: u32) -> u64 {
+fn recip63_newton(d: u32) -> u64 {
     debug_assert!(d >= 1 << 31);
     if d == 1 << 31 {
         // Y = 2^32, which the 32-bit operands below cannot hold.
@@ -306,7 +353,10 @@ impl Divisor {
 
 #[cfg(test)]
 mod tests {
-    use super::{floor_div_rem, floor_div_shifted, recip63, Divisor, QUOTIENT_LIMIT};
+    use super::{
+        floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, Divisor,
+        QUOTIENT_LIMIT,
+    };
     use crate::rasterizer::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
@@ -334,10 +384,11 @@ mod tests {
         }
     }
 
-    /// The Newton reciprocal is the division's, at the ends of its domain,
-    /// at every power of two and its neighbours, and at random divisors.
+    /// Both reciprocals are the division's, at the ends of their domain,
+    /// at every power of two and its neighbours, at the digit boundaries,
+    /// and at random divisors.
     #[test]
-    fn newton_reciprocal_is_the_division() {
+    fn reciprocals_are_the_division() {
         let mut ds: Vec<u32> = vec![1 << 31, (1 << 31) + 1, u32::MAX, u32::MAX - 1];
         for k in 0..31 {
             for d in [(1u32 << 31) + (1 << k), (1u32 << 31) + (1 << k) - 1] {
@@ -350,7 +401,9 @@ mod tests {
         let mut next = xorshift(0x1234_5678_9abc_def1);
         ds.extend((0..200_000).map(|_| (next() as u32) | 1 << 31));
         for d in ds {
-            assert_eq!(recip63(d), (1u64 << 63) / d as u64, "{d}");
+            let want = (1u64 << 63) / d as u64;
+            assert_eq!(recip63_newton(d), want, "{d}");
+            assert_eq!(recip63_by_digits(d), want, "{d}");
         }
     }
 
@@ -360,7 +413,9 @@ mod tests {
     #[ignore = "2^31 divisors: 12 s in release, 44 s in debug (CI runs it)"]
     fn recip63_exhaustive() {
         for d in (1u32 << 31)..=u32::MAX {
-            assert_eq!(recip63(d), (1u64 << 63) / d as u64, "{d}");
+            let want = (1u64 << 63) / d as u64;
+            assert_eq!(recip63_newton(d), want, "{d}");
+            assert_eq!(recip63_by_digits(d), want, "{d}");
         }
     }
 
