@@ -1214,15 +1214,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let (hw, hh) = (8 * self.w, 8 * self.h);
         // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w), each rounded
-        // (the `+ w` over `2w`); the depth z_c·K/w floored, with
-        // 2K = 2²⁴ − 2⁸ as two shifts (no 64-bit multiply where there is
-        // none in hardware). The quotients are exact within ±2³¹, beyond
-        // which each clamp below decides alike (the offsets 8W, 8H and 2²³
-        // are at most 2²³, the clamps at 2²⁸ and 2³⁰).
+        // (the `+ w` over `2w`); the depth z_c·K/w floored, 2K = 2²⁴ − 2⁸.
+        // The quotients are exact within ±2³¹, beyond which each clamp
+        // below decides alike (the offsets 8W, 8H and 2²³ are at most 2²³,
+        // the clamps at 2²⁸ and 2³⁰).
         let n = [
             mul_by_narrow(2 * c[0], hw) + w,
             mul_by_narrow(-2 * c[1], hh) + w,
-            c[2] * (1 << 24) - c[2] * (1 << 8),
+            mul_by_narrow(c[2], (1 << 24) - (1 << 8)),
         ];
         let [x, y, z] = if crate::platform::SOFT_DIV64 {
             floor_div_all(n, 2 * w)

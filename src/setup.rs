@@ -32,6 +32,7 @@
 //! at its start) is within `DRIFT + k/2` of the range, below 2¹⁰ across a
 //! tile's 2 032 columns.
 
+use crate::num::widening::{mul_by_narrow, mul_i32_i16};
 use crate::rasterizer::Recip;
 
 /// The largest magnitude of a window coordinate, in 1/16 pixel.
@@ -175,13 +176,15 @@ pub(crate) fn draw<const N: usize>(
     let mut base = [0i32; N];
     for k in 0..N {
         // Per pixel with 4 fractional bits: (d1·dy2 − d2·dy1)·2⁸ / area,
-        // |d| < 2²⁶ and |dy| < 2¹⁵: the numerators are below 2⁴².
-        let d1 = (v[1].a[k] - v[0].a[k]) as i64;
-        let d2 = (v[2].a[k] - v[0].a[k]) as i64;
-        let nx = d1 * dy2 as i64 - d2 * dy1 as i64;
-        let ny = d2 * dx1 as i64 - d1 * dx2 as i64;
+        // |d| < 2²⁶ and |dx|, |dy| < 2¹⁵ − 16 (`i16`): the numerators are
+        // below 2⁴².
+        let d1 = v[1].a[k] - v[0].a[k];
+        let d2 = v[2].a[k] - v[0].a[k];
+        let by = |d: i32, e: i32| mul_i32_i16(d, e as i16);
+        let nx = by(d1, dy2) - by(d2, dy1);
+        let ny = by(d2, dx1) - by(d1, dx2);
         // The quotients are below 2⁵⁰ (an area of at least 1), their
-        // products with the offsets below 2⁵⁴: `i64`.
+        // products with the offsets (`|o| ≤ 8`) below 2⁵⁴: `i64`.
         let (mut x, mut y) = (recip.div_i64(nx, 8) as i64, recip.div_i64(ny, 8) as i64);
         if area < 0 {
             (x, y) = (-x, -y);
@@ -191,7 +194,8 @@ pub(crate) fn draw<const N: usize>(
         gy[k] = y as i32;
         // The plane at pixel (co, ro)'s centre, 8 sixteenths at most from
         // vertex 0 on each axis.
-        let at = ((v[0].a[k] as i64) << 4) + ((x * ox + y * oy + 8) >> 4);
+        let at =
+            ((v[0].a[k] as i64) << 4) + ((mul_by_narrow(x, ox) + mul_by_narrow(y, oy) + 8) >> 4);
         base[k] = at as i32;
     }
 
