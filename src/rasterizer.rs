@@ -352,8 +352,8 @@ impl Recip {
     }
 
     /// [`Recip::div_i64`] in 64-bit arithmetic, for `|num| < 2³¹` and a
-    /// shift `sh = self.sh − up` in `1 ..= 63` (`self.sh ≥ 32` and `up ≤ 4`
-    /// give `sh ≥ 28`): the magnitude's product `P = |num|·m < 2⁶³`
+    /// shift `sh = self.sh − up` in `1 ..= 63` (`self.sh ≥ 32` and `up ≤ 8`
+    /// give `sh ≥ 24`): the magnitude's product `P = |num|·m < 2⁶³`
     /// (`m ≤ 2³²`) plus the rounding term `h = 2^(sh−1) ≤ 2⁶²` stays below
     /// 2⁶⁴, and, as in [`Recip::div_i64_limbs`], `−⌊(P + h − 1)/2^sh⌋` is
     /// the negative numerator's quotient with the same rounding. One
@@ -622,7 +622,7 @@ pub(crate) mod tests {
             let r = Recip::new(a);
             let ties = [1i64, 3, 5].map(|k| (k << r.sh.saturating_sub(33).min(28)).min(lim));
             for &num in nums.iter().chain(&ties).chain(&ties.map(|t| -t)) {
-                for up in [0, 4] {
+                for up in [0, 4, 8] {
                     let sh = r.sh - up;
                     if sh < 64 {
                         narrow += 1;
