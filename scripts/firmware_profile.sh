@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Where a firmware frame's instructions go: runs the firmware built by
 # scripts/firmware.sh in QEMU with the plugin's per-address profile for one
-# render call and prints the instructions per function, twice: per symbol
-# of the ELF (functions as linked, e.g. __aeabi_lmul), and per innermost
-# function that addr2line names (inlined ones included).
+# render call and prints its instructions three ways: per symbol
+# of the ELF (functions as linked, e.g. __aeabi_lmul), per innermost
+# function that addr2line names (inlined ones included), and per execution
+# count (the instructions that ran once a vertex, once a triangle, …).
 #   scripts/firmware_profile.sh [TARGET] [FRAME_INDEX] [LINES]
 # TARGET: thumbv7em-none-eabihf (default) or thumbv6m-none-eabi; FRAME_INDEX:
 # the render call's position in firmware/common/scenes.rs's list (0 = S1,
@@ -46,4 +47,8 @@ echo "-- per innermost (inlined) function"
 paste -d' ' "$work/byaddr.txt" "$work/fn.txt" \
     | awk -v t="$total" '{ n = $2; $1 = ""; $2 = ""; sub(/^  /, ""); s[$0] += n }
         END { for (f in s) printf "%10d %5.1f%%  %s\n", s[f], 100 * s[f] / t, f }' \
+    | sort -rn | awk -v l="$L" 'NR <= l'
+echo "-- per execution count (code run once a vertex, a triangle, a row, …: instructions, times each ran × instructions that ran that often)"
+awk -v t="$total" '{ c[$2] += 1; s[$2] += $2 }
+    END { for (k in c) printf "%10d %5.1f%%  %d × %d\n", s[k], 100 * s[k] / t, k, c[k] }' "$work/byaddr.txt" \
     | sort -rn | awk -v l="$L" 'NR <= l'
