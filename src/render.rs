@@ -62,7 +62,7 @@ use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
 use crate::normalize::normalize;
 use crate::num::division::{floor_div, floor_div_all};
-use crate::num::widening::{mul_by_narrow, mul_narrow};
+use crate::num::widening::{mul_by_narrow, mul_i32, mul_narrow};
 use crate::rasterizer::{
     coverage, ClipRect, Cover, RasterVertex, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
 };
@@ -851,10 +851,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
 /// `k` in `corners` (see [`area2`](crate::rasterizer::area2)).
 #[inline(always)]
 fn win_area(win: &[Win], corners: [usize; 3]) -> i64 {
-    let [a, b, c] = corners.map(|j| win[j].map(i64::from));
+    let [a, b, c] = corners.map(|j| win[j]);
     // Window positions are within ±2^28 (`window` clamps them): the
     // differences fit i32, the products 2^58.
-    mul_narrow(b[0] - a[0], c[1] - a[1]) - mul_narrow(b[1] - a[1], c[0] - a[0])
+    mul_i32(b[0] - a[0], c[1] - a[1]) - mul_i32(b[1] - a[1], c[0] - a[0])
 }
 
 /// Whether snapping may have given the triangle of window positions `w`
