@@ -2,7 +2,7 @@
 //!
 //! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk, the window
 //!   mapping).
-//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d` without a
+//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d` without a 64-bit
 //!   division, the mantissa of a reciprocal (a triangle's area, a vertex's
 //!   `w`).
 //! - [`floor_div_all`]: several numerators over one divisor (the window
@@ -14,8 +14,9 @@
 //! counts of S1, where the window mapping's three per vertex were 14 % of
 //! the M0's frame. Where [`platform::SOFT_DIV64`] holds (targets
 //! whose pointers are narrower than 64 bits), [`floor_div_all`]
-//! takes one reciprocal ([`recip63`]: a table, a Newton step and an exact
-//! remainder step, no division) and, per numerator, a 32 × 32 → 64-bit
+//! takes one reciprocal ([`recip63`]: two 32-bit divisions where the core
+//! has them, else a table, a Newton step and an exact remainder step) and,
+//! per numerator, a 32 × 32 → 64-bit
 //! product and an exact remainder fix-up; the set-up's area reciprocal
 //! takes [`recip63`] too. The values are the same on every target (unit
 //! tests hold each form to the plain division, [`recip63`] over its whole
