@@ -25,7 +25,7 @@ use std::fmt::Write as _;
 use std::process::Command;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use fixshade::band::{BandVertex, Bands, Cached, Recomputed};
+use fixshade::band::{Bands, Cached, Recomputed};
 use fixshade::camera::{Camera, Projection};
 use fixshade::depth::{DepthBand, DepthBuffer};
 use fixshade::framebuffer::Framebuffer;
@@ -73,7 +73,7 @@ fn band_frame(
     h: u32,
     colour: &mut [u16],
     depth: &mut [u16],
-    cache: Option<&mut [BandVertex]>,
+    cache: Option<&mut [CachedVertex]>,
 ) {
     let mut fb = Framebuffer::new(px, W, H).unwrap();
     k.render_bands(&mut fb, h, colour, depth, cache).unwrap();
@@ -86,7 +86,7 @@ struct Run {
     colour: Vec<u16>,
     depth: Vec<u16>,
     cache: Vec<CachedVertex>,
-    band_cache: Vec<BandVertex>,
+    band_cache: Vec<CachedVertex>,
 }
 
 impl Run {
@@ -100,7 +100,7 @@ impl Run {
             colour: vec![0; band],
             depth: vec![0; (W * H) as usize],
             cache: vec![CachedVertex::default(); n],
-            band_cache: vec![BandVertex::default(); n],
+            band_cache: vec![CachedVertex::default(); n],
         }
     }
 
@@ -139,7 +139,7 @@ fn firmware_frame(
     px: &mut [u16],
     colour: &mut [u16],
     depth: &mut [u16],
-    cache: &mut [BandVertex],
+    cache: &mut [CachedVertex],
     whole_cache: &mut [CachedVertex],
 ) {
     let c = &d.camera;
@@ -305,7 +305,7 @@ fn stack_of(name: &str, mode: &str, h: u32) -> usize {
     let (mut px, mut depth) = (vec![0u16; (W * H) as usize], vec![0u16; (W * H) as usize]);
     let mut colour = vec![0u16; (W * h) as usize];
     let (mut cache, mut wc) = (
-        vec![BandVertex::default(); n],
+        vec![CachedVertex::default(); n],
         vec![CachedVertex::default(); n],
     );
     // Warm up (page faults, lazy statics).
@@ -460,7 +460,7 @@ fn main() {
                 if [8, 16, 32].contains(&h) {
                     let buffers = (W * h * 2 * 2) as usize;
                     let cache = if mode == "cached" {
-                        nv * core::mem::size_of::<BandVertex>()
+                        nv * core::mem::size_of::<CachedVertex>()
                     } else {
                         0
                     };
@@ -492,7 +492,7 @@ fn main() {
     }
     let ws = stack_run("s1", "whole", H);
     let ws4 = stack_run("s4", "whole", H);
-    let text = format!("{md}\nRAM beyond the mesh (band buffers: colour and depth, `u16`, 320 × rows; BandVertex {} bytes; whole-frame stack S1 {}, S4 {}):\n\n{ram}", core::mem::size_of::<BandVertex>(), kb(ws), kb(ws4));
+    let text = format!("{md}\nRAM beyond the mesh (band buffers: colour and depth, `u16`, 320 × rows; CachedVertex {} bytes; whole-frame stack S1 {}, S4 {}):\n\n{ram}", core::mem::size_of::<CachedVertex>(), kb(ws), kb(ws4));
     println!("{text}");
     std::fs::create_dir_all("report").unwrap();
     std::fs::write("report/band_cost.md", &text).unwrap();

@@ -6,6 +6,7 @@
 # function that addr2line names (inlined ones included), and per execution
 # count (the instructions that ran once a vertex, once a triangle, …).
 #   scripts/firmware_profile.sh [TARGET] [FRAME_INDEX] [LINES]
+# (KEEP_PROFILE=DIR keeps the raw per-address counts and symbol tables in DIR.)
 # TARGET: thumbv7em-none-eabihf (default) or thumbv6m-none-eabi; FRAME_INDEX:
 # the render call's position in firmware/common/scenes.rs's list (0 = S1,
 # 1 = S2, 2 = S3, 3 = S4, in their own shading mode).
@@ -23,7 +24,7 @@ PLUGIN=$OUT/libinsn_count.so
 [ -f "$ELF" ] && [ -f "$PLUGIN" ] || { echo "run scripts/firmware.sh first" >&2; exit 1; }
 sym() { arm-none-eabi-nm "$ELF" | awk -v s="$1" '$3 == s { print "0x" $1 }'; }
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+trap '[ -n "${KEEP_PROFILE:-}" ] && cp -r "$work" "$KEEP_PROFILE"; rm -rf "$work"' EXIT
 (cd "$work" && qemu-system-arm -machine mps2-an386 -nographic -monitor none -serial none \
     -semihosting-config enable=on,target=native \
     -plugin "$PLUGIN,begin=$(sym fw_count_begin),end=$(sym fw_count_end),out=counts.txt,profile=profile.txt,region=$N" \

@@ -21,9 +21,9 @@
 //!
 //! # Vertex modes
 //! - [`Cached`]: the vertices are transformed and projected once per frame
-//!   into a caller-provided [`BandVertex`] per mesh vertex (20 bytes: window
-//!   position, depth, colour, flags), and lit once, when a visible triangle
-//!   first needs them.
+//!   into a caller-provided [`CachedVertex`] per mesh vertex (16 bytes: window
+//!   position, depth, colour, flags; the whole frame's store), and lit once,
+//!   when a visible triangle first needs them.
 //! - [`Recomputed`]: no per-vertex storage; each triangle's vertices are
 //!   transformed, projected and lit again for every band it is drawn in.
 //!
@@ -42,7 +42,7 @@
 //! # Memory
 //! The caller provides the colour band (`W × h` `u16`), the depth band
 //! (`W × h` `u16`, if the scene has a depth test) and, in cached mode, one
-//! [`BandVertex`] per mesh vertex. A draw call keeps the run table
+//! [`CachedVertex`] per mesh vertex. A draw call keeps the run table
 //! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack; a
 //! triangle that spans several bands is set up again in each (the 32-bit
 //! set-up is exact row by row, so the pixels are the whole frame's).
@@ -53,7 +53,6 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::{Point, RawData, Size};
 use embedded_graphics::primitives::Rectangle;
 
-use crate::color::Shade;
 use crate::depth::{DepthBand, DepthTest, NoDepth};
 use crate::illumination::Viewer;
 use crate::light::LightSet;
@@ -62,11 +61,10 @@ use crate::mesh::Mesh;
 
 use crate::rasterizer::{area2, RasterVertex};
 use crate::render::{
-    check_bounds, CacheCorners, CachedVertex, Corners, DrawStats, Frame, RenderError, Renderer,
-    ShadingMode,
+    check_bounds, CachedVertex, DrawStats, Frame, RenderError, Renderer, ShadingMode,
 };
 use crate::span::BandSink;
-use crate::vector::{Unit3, Vec3};
+use crate::vertex::Corners;
 
 /// How many runs of consecutive triangles a frame is split into for
 /// finding each band's triangles (a table of `CHUNKS × 12` bytes on the
@@ -79,72 +77,16 @@ use crate::vector::{Unit3, Vec3};
 /// ```
 pub const CHUNKS: usize = 128;
 
-const B_INSIDE: u64 = 1 << 51;
-const B_FRONT: u64 = 1 << 52;
-const B_BACK: u64 = 1 << 53;
-const COLOUR_MASK: u64 = (1 << 51) - 1;
-
-/// One vertex's per-frame data for the band renderer in cached mode: 20
-/// bytes (4-aligned), against 88 for a [`CachedVertex`].
-///
-/// Window position (`x`, `y` in 1/16 pixel, clamped to ±2²⁸), depth
-/// attribute (`z_w·65535·2⁸ + 2⁷`, clamped to ±2³⁰), and one lit colour
-/// (three 17-bit `Q.16` channels, 0 ..= 65536) with three flags, packed in
-/// 64 bits. The eye
-/// position and normal are not kept: flat and Phong shading, lighting a
-/// vertex and clipping a triangle at the near plane recompute them from the
-/// mesh, which gives the same values.
-///
-/// ```
-/// use fixshade::band::BandVertex;
-/// assert_eq!(core::mem::size_of::<BandVertex>(), 20);
-/// let cache = [BandVertex::default(); 8]; // one per mesh vertex
-/// # let _ = cache;
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct BandVertex {
-    x: i32,
-    y: i32,
-    z: i32,
-    /// Colour and flags: red bits 0–16, green 17–33, blue 34–50, flags 51–53.
-    c: [u32; 2],
-}
-
-impl BandVertex {
-    #[inline(always)]
-    fn bits(&self) -> u64 {
-        self.c[0] as u64 | (self.c[1] as u64) << 32
-    }
-    #[inline(always)]
-    fn set_bits(&mut self, v: u64) {
-        self.c = [v as u32, (v >> 32) as u32];
-    }
-}
-
-fn pack(s: Shade) -> u64 {
-    let b = s.to_bits();
-    b[0] as u64 | (b[1] as u64) << 17 | (b[2] as u64) << 34
-}
-
-#[inline(always)]
-fn unpack(v: u64) -> Shade {
-    let m = (1u64 << 17) - 1;
-    Shade::from_bits(
-        (v & m) as u32,
-        ((v >> 17) & m) as u32,
-        ((v >> 34) & m) as u32,
-    )
-}
-
 /// Where the band renderer's per-vertex work is kept: [`Cached`] or
 /// [`Recomputed`].
 ///
 /// ```
-/// use fixshade::band::{BandVertex, Cached, Recomputed, VertexMode};
+/// use fixshade::band::{Cached, Recomputed, VertexMode};
+/// use fixshade::render::CachedVertex;
 /// fn cached<X: VertexMode>(_: &X) -> bool {
 ///     X::CACHED
 /// }
-/// let mut storage = [BandVertex::default(); 3];
+/// let mut storage = [CachedVertex::default(); 3];
 /// let mut mode = Cached(&mut storage);
 /// assert!(cached(&mode) && mode.cache().len() == 3);
 /// assert!(!cached(&Recomputed) && Recomputed.cache().is_empty());
@@ -153,25 +95,26 @@ pub trait VertexMode {
     /// Whether the vertices are cached.
     const CACHED: bool;
     /// The cache (empty for [`Recomputed`]).
-    fn cache(&mut self) -> &mut [BandVertex];
+    fn cache(&mut self) -> &mut [CachedVertex];
 }
 
 /// Vertices transformed, projected and lit once per frame, in caller
-/// storage of one [`BandVertex`] per mesh vertex.
+/// storage of one [`CachedVertex`] per mesh vertex.
 ///
 /// ```
-/// use fixshade::band::{BandVertex, Cached, VertexMode};
-/// let mut storage = [BandVertex::default(); 4];
+/// use fixshade::band::{Cached, VertexMode};
+/// use fixshade::render::CachedVertex;
+/// let mut storage = [CachedVertex::default(); 4];
 /// let mut mode = Cached(&mut storage);
 /// assert_eq!(mode.cache().len(), 4);
 /// ```
 #[derive(Debug)]
-pub struct Cached<'c>(pub &'c mut [BandVertex]);
+pub struct Cached<'c>(pub &'c mut [CachedVertex]);
 
 impl VertexMode for Cached<'_> {
     const CACHED: bool = true;
     #[inline(always)]
-    fn cache(&mut self) -> &mut [BandVertex] {
+    fn cache(&mut self) -> &mut [CachedVertex] {
         self.0
     }
 }
@@ -189,7 +132,7 @@ pub struct Recomputed;
 impl VertexMode for Recomputed {
     const CACHED: bool = false;
     #[inline(always)]
-    fn cache(&mut self) -> &mut [BandVertex] {
+    fn cache(&mut self) -> &mut [CachedVertex] {
         &mut []
     }
 }
@@ -273,9 +216,9 @@ fn rows_of(y: [i32; 3]) -> (i32, i32) {
 /// draws it (`Frame::triangle` decides that for the whole frame and the
 /// bands alike): this pass only spares work.
 #[inline(always)]
-fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
+fn visible_rows<S: Specular, V: Viewer, L: LightSet>(
     f: &Frame<'_, '_, S, V, L>,
-    c: &C,
+    c: &Corners,
     cull: bool,
 ) -> Option<(i32, i32)> {
     let inside = [c.inside(0), c.inside(1), c.inside(2)];
@@ -283,7 +226,7 @@ fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
     if !(inside[0] && inside[1] && inside[2]) {
         return (inside[0] || inside[1] || inside[2]).then_some((vp.y0, vp.y1));
     }
-    let w = [c.win(0), c.win(1), c.win(2)];
+    let w = c.wins(f);
     let a = area2(&w.map(|v| RasterVertex::<0> {
         x: v[0].into(),
         y: v[1].into(),
@@ -299,82 +242,6 @@ fn visible_rows<S: Specular, V: Viewer, L: LightSet, C: Corners>(
         return None;
     }
     Some((lo, hi))
-}
-
-/// Corners from the compact [`BandVertex`] cache.
-struct BandCorners<'c> {
-    cache: &'c mut [BandVertex],
-    idx: [usize; 3],
-}
-
-impl Corners for BandCorners<'_> {
-    #[inline(always)]
-    fn inside(&self, k: usize) -> bool {
-        self.cache[self.idx[k]].c[1] & ((B_INSIDE >> 32) as u32) != 0
-    }
-    #[inline(always)]
-    fn win(&self, k: usize) -> [i32; 3] {
-        let v = &self.cache[self.idx[k]];
-        [v.x, v.y, v.z]
-    }
-    fn clip<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-    ) -> [i64; 4] {
-        f.proj.clip(f.eye(self.idx[k]))
-    }
-    #[inline(always)]
-    fn shade<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        back: bool,
-        stats: &mut DrawStats,
-    ) -> Shade {
-        let i = self.idx[k];
-        let bits = self.cache[i].bits();
-        let want = if back { B_BACK } else { B_FRONT };
-        if bits & want != 0 {
-            return unpack(bits);
-        }
-        light_band_vertex(f, &mut self.cache[i], i, want, stats)
-    }
-    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        normal: bool,
-    ) -> (Vec3, Unit3) {
-        let i = self.idx[k];
-        let n = if normal { f.eye_normal(i) } else { Unit3::ZERO };
-        (f.eye(i), n)
-    }
-}
-
-/// Lights `v` (mesh vertex `i`) for the facing `want` (`B_FRONT` or
-/// `B_BACK`), keeping the colour if the vertex has none yet.
-#[inline(never)]
-fn light_band_vertex<S: Specular, V: Viewer, L: LightSet>(
-    f: &Frame<'_, '_, S, V, L>,
-    v: &mut BandVertex,
-    i: usize,
-    want: u64,
-    stats: &mut DrawStats,
-) -> Shade {
-    let bits = v.bits();
-    let n = f.eye_normal(i);
-    let back = want == B_BACK;
-    let s =
-        f.r.lighting()
-            .shade(f.eye(i), if back { n.neg() } else { n });
-    stats.lit = stats.lit.saturating_add(1);
-    // One colour is kept: the first facing asked for (the other one, of
-    // two-sided silhouette vertices only, is lit each time).
-    if bits & (B_FRONT | B_BACK) == 0 {
-        v.set_bits((bits & !COLOUR_MASK) | pack(s) | want);
-    }
-    s
 }
 
 /// Rows per band actually used (at most the viewport's height) and the
@@ -410,7 +277,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     ///
     /// `depth` is [`NoDepth`] or a [`DepthBand`] of at least `width × h`
     /// values; `vertices` is [`Recomputed`] or [`Cached`] with one
-    /// [`BandVertex`] per mesh vertex. Each band goes to the target as one
+    /// [`CachedVertex`] per mesh vertex. Each band goes to the target as one
     /// `fill_contiguous` of `width × h` pixels (the last band may be
     /// shorter). Buffers too small are errors
     /// ([`RenderError::BandTooSmall`], [`RenderError::DepthTooSmall`],
@@ -420,7 +287,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     ///
     /// ```
     /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-    /// use fixshade::band::{BandVertex, Bands, Cached, Recomputed};
+    /// use fixshade::band::{Bands, Cached, Recomputed};
+    /// use fixshade::render::CachedVertex;
     /// use fixshade::camera::Camera;
     /// use fixshade::depth::DepthBand;
     /// use fixshade::framebuffer::Framebuffer;
@@ -446,7 +314,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     /// // A band of 32 × 4 pixels, colour and depth: 512 bytes.
     /// let (mut colour, mut z) = ([0u16; 32 * 4], [0u16; 32 * 4]);
     /// let mut bands = Bands { colour: &mut colour, height: 4, background: Rgb565::BLUE };
-    /// let mut cache = [BandVertex::default(); 3];
+    /// let mut cache = [CachedVertex::default(); 3];
     /// renderer
     ///     .draw_bands::<Gouraud, _, _, _>(&mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z), &mut Cached(&mut cache))
     ///     .unwrap();
@@ -492,7 +360,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         let cull = self.options().cull;
         let cache = &mut vertices.cache()[..if X::CACHED { n } else { 0 }];
         if X::CACHED {
-            prepare_cache(&frame, cache);
+            frame.project_all(cache);
         }
         let runs = Runs::new(mesh.indices.len());
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
@@ -501,11 +369,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         for (t, tri) in mesh.indices.iter().enumerate() {
             let idx = tri.map(|i| i as usize);
             let rows = if X::CACHED {
-                visible_rows(&frame, &BandCorners { cache, idx }, cull)
+                let c = Corners {
+                    cache,
+                    slot: idx,
+                    vertex: idx,
+                };
+                visible_rows(&frame, &c, cull)
             } else {
-                let mut local = project3(&frame, idx);
-                let c = CacheCorners {
-                    cache: &mut local,
+                let c = Corners {
+                    cache: &mut project3(&frame, idx),
                     slot: [0, 1, 2],
                     vertex: idx,
                 };
@@ -552,7 +424,7 @@ impl Job<'_, '_> {
     fn run<M, X, T, D, S, V, L>(
         &self,
         frame: &mut Frame<'_, '_, S, V, L>,
-        cache: &mut [BandVertex],
+        cache: &mut [CachedVertex],
         target: &mut T,
         bands: &mut Bands,
         depth: &mut D,
@@ -647,38 +519,15 @@ impl Runs {
     }
 }
 
-/// Transforms and projects every vertex into the compact cache (no
-/// colour yet), with the eye transform inlined in the loop (callgrind, S1
-/// in cached 16-row bands: 2.888 M → 2.859 M).
-#[inline(never)]
-fn prepare_cache<S: Specular, V: Viewer, L: LightSet>(
-    f: &Frame<'_, '_, S, V, L>,
-    cache: &mut [BandVertex],
-) {
-    for (i, v) in cache.iter_mut().enumerate() {
-        let clip = f.proj.clip(f.eye_inline(i));
-        let inside = clip[2] + clip[3] >= 0;
-        let w = if inside { f.window(&clip) } else { [0; 3] };
-        *v = BandVertex {
-            x: w[0],
-            y: w[1],
-            z: w[2],
-            c: [0, 0],
-        };
-        if inside {
-            v.set_bits(B_INSIDE);
-        }
-    }
-}
-
+/// Projects triangle `idx`'s vertices into a cache of three.
 #[inline(always)]
 fn project3<S: Specular, V: Viewer, L: LightSet>(
     f: &Frame<'_, '_, S, V, L>,
     idx: [usize; 3],
 ) -> [CachedVertex; 3] {
-    let mut l = [CachedVertex::default(); 3];
+    let mut l = [CachedVertex::new(); 3];
     for (c, &i) in l.iter_mut().zip(&idx) {
-        f.project(c, i);
+        f.project_into(c, i);
     }
     l
 }
@@ -688,7 +537,7 @@ fn project3<S: Specular, V: Viewer, L: LightSet>(
 #[inline(always)]
 fn band_triangle_cached<M, P, D, S, V, L>(
     f: &Frame<'_, '_, S, V, L>,
-    cache: &mut [BandVertex],
+    cache: &mut [CachedVertex],
     idx: [usize; 3],
     sink: &mut P,
     depth: &mut D,
@@ -702,18 +551,22 @@ where
     V: Viewer,
     L: LightSet,
 {
-    let v = [&cache[idx[0]], &cache[idx[1]], &cache[idx[2]]];
-    // Rows first: a vertex behind the near plane has no window position,
-    // so a rejection by rows holds only if all three are in front (testing
-    // the rows first, callgrind: S1 in cached 16-row bands 2.815 M →
-    // 2.799 M).
-    let (lo, hi) = rows_of([v[0].y, v[1].y, v[2].y]);
-    if (hi < f.rows.0 || lo > f.rows.1)
-        && v[0].c[1] & v[1].c[1] & v[2].c[1] & ((B_INSIDE >> 32) as u32) != 0
-    {
-        return Ok(());
+    // Rows first, where all three corners are in front of the near plane
+    // with their positions kept (a vertex behind it has no window
+    // position; a far one is left to the triangle's own tests).
+    let y = idx.map(|i| cache[i].near_y());
+    if let [Some(a), Some(b), Some(c)] = y {
+        let (lo, hi) = rows_of([a, b, c]);
+        if hi < f.rows.0 || lo > f.rows.1 {
+            return Ok(());
+        }
     }
-    f.triangle::<M, P, D, _>(&mut BandCorners { cache, idx }, sink, depth, stats)
+    let mut c = Corners {
+        cache,
+        slot: idx,
+        vertex: idx,
+    };
+    f.triangle::<M, P, D>(&mut c, sink, depth, stats)
 }
 
 /// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
@@ -735,18 +588,19 @@ where
     L: LightSet,
 {
     let mut l = project3(f, idx);
-    let mut c = CacheCorners {
+    let mut c = Corners {
         cache: &mut l,
         slot: [0, 1, 2],
         vertex: idx,
     };
     if c.inside(0) && c.inside(1) && c.inside(2) {
-        let (lo, hi) = rows_of([c.win(0)[1], c.win(1)[1], c.win(2)[1]]);
+        let w = c.wins(f);
+        let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);
         if hi < f.rows.0 || lo > f.rows.1 {
             return Ok(());
         }
     }
-    f.triangle::<M, P, D, _>(&mut c, sink, depth, stats)
+    f.triangle::<M, P, D>(&mut c, sink, depth, stats)
 }
 
 /// An error of the band sink (memory, which cannot fail) as the target's.

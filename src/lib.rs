@@ -22,6 +22,7 @@ mod setup;
 pub mod span;
 pub mod specular_table;
 pub mod vector;
+mod vertex;
 
 pub use color::{Rgb, Shade};
 pub use illumination::Lighting;

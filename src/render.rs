@@ -1,11 +1,13 @@
 //! The pipeline: from a mesh, a model transform and a camera to RGB565
 //! pixels in any `embedded-graphics` `DrawTarget`.
 //!
-//! Per vertex, once per frame: model-view transform (the mesh's `i16`
+//! Per vertex, once per frame (`src/vertex.rs`, a 16-byte
+//! [`CachedVertex`] each): model-view transform (the mesh's `i16`
 //! positions through the model-view matrix with the mesh's box folded in,
 //! to `I8F24`), projection to clip space, snapping to 1/16 pixel (the
-//! whole frame does every mesh vertex in one pass before its triangles;
-//! the band renderer, those its triangles use). The normal transform (of
+//! whole frame and the band renderer's cached mode do every mesh vertex in
+//! one pass before its triangles; its recomputed mode, those of each
+//! triangle it draws). The normal transform (of
 //! the packed normal's octahedral point, 16 × 16-bit products)
 //! and lighting (Gouraud) are done later, and only for vertices of
 //! triangles that survive culling and touch the target. Triangles that
@@ -39,10 +41,8 @@
 //!
 //! # Stack
 //! No recursion, no heap; the stack is bounded by the set-up triangles and
-//! clip polygons of one triangle at a time. Measured by painting the stack
-//! (README, "Memory"): 3.8 KB for S1 with Gouraud shading and depth
-//! on x86-64, 3 728 bytes on a Cortex-M4, 6 012 for the bunny in Phong shading on
-//! a Cortex-M4.
+//! clip polygons of one triangle at a time. It is measured by painting it
+//! (README, "Memory"; `scripts/firmware.sh` on the Cortex-M cores).
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::OriginDimensions;
@@ -60,18 +60,17 @@ use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::{face_normal, Mesh, MeshError};
-use crate::normalize::normalize;
-use crate::num::division::{floor_div, floor_div_all};
-use crate::num::widening::{mul_by_narrow, mul_i32, mul_narrow};
-use crate::rasterizer::{
-    coverage, ClipRect, Cover, RasterVertex, CLIP_LIMIT, COORD_LIMIT, DRIFT, TINY,
-};
+use crate::num::division::floor_div;
+use crate::num::widening::{mul_i32, mul_narrow};
+use crate::rasterizer::{coverage, ClipRect, Cover, RasterVertex, CLIP_LIMIT, DRIFT, TINY};
 use crate::setup;
 use crate::span::{
     emit, ClampedGouraud, FlatShader, FramebufferSink, PackedGouraud, PairGouraud, PhongPixels,
     PixelSink, SpanDepth, SpanShader, TargetSink, LANE_MARGIN,
 };
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
+pub use crate::vertex::CachedVertex;
+use crate::vertex::{Corners, Win};
 
 /// Which shading mode a type selects.
 ///
@@ -394,56 +393,6 @@ const TINY_AREA: u64 = 256 * 2 * (TINY as u64 + 1);
 /// box's rows in the viewport ([`Frame::pixel_box`]).
 type PixelBox = ((i32, i32), (i32, i32), bool);
 
-/// A window position and depth attribute ([`Frame::window`]): `x`, `y` in
-/// 1/16 pixel within ±2²⁸, the depth within ±2³⁰, so every coordinate and
-/// its difference from a tile's centre (below 2²⁵) fits `i32`.
-type Win = [i32; 3];
-
-const F_PROJECTED: u8 = 1;
-const F_FRONT: u8 = 2;
-const F_BACK: u8 = 4;
-const F_NORMAL: u8 = 8;
-
-/// One vertex's per-frame data, in a cache the caller provides (one per
-/// mesh vertex): 88 bytes (`i64` fields are 8-aligned on Cortex-M too).
-///
-/// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
-/// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-/// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-/// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Gouraud, NoDepth, RenderError};
-/// let mut px = [0u16; 32 * 32];
-/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut short = [CachedVertex::default(); 2]; // the mesh has 3 vertices
-/// let e = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut short);
-/// assert_eq!(e, Err(RenderError::CacheTooSmall));
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct CachedVertex {
-    eye: Vec3,
-    normal: Unit3,
-    flags: u8,
-    clip: [i64; 4],
-    win: Win,
-    front: Shade,
-    back: Shade,
-}
-
-const _: () = assert!(core::mem::size_of::<CachedVertex>() == 88);
-
 /// The largest target side in pixels.
 ///
 /// ```
@@ -539,7 +488,7 @@ pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
     lighting: Lighting<S, V, L>,
     camera: Camera,
     modelview: Mat4,
-    normal_m: [[i16; 3]; 3],
+    pub(crate) normal_m: [[i16; 3]; 3],
     options: RenderOptions,
 }
 
@@ -795,12 +744,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         frame.each_tile(|frame| {
             for tri in mesh.indices {
                 let idx = tri.map(|i| i as usize);
-                let mut corners = CacheCorners {
+                let mut corners = Corners {
                     cache,
                     slot: idx,
                     vertex: idx,
                 };
-                frame.triangle::<M, P, D, _>(&mut corners, sink, depth, &mut stats)?;
+                frame.triangle::<M, P, D>(&mut corners, sink, depth, &mut stats)?;
             }
             Ok(())
         })?;
@@ -923,8 +872,8 @@ fn clip_orientation(c: &[[i64; 4]; 3]) -> i64 {
 /// doubled area `a` says: the exact test behind [`snap_may_flip`], out of
 /// line (it is rare).
 #[inline(never)]
-fn turned_over<C: Corners, S: Specular, V: Viewer, L: LightSet>(
-    c: &mut C,
+fn turned_over<S: Specular, V: Viewer, L: LightSet>(
+    c: &Corners,
     f: &Frame<'_, '_, S, V, L>,
     a: i64,
 ) -> bool {
@@ -950,93 +899,6 @@ pub(crate) fn check_bounds<E>(bb: &Rectangle) -> Result<(), RenderError<E>> {
     Ok(())
 }
 
-/// Where a triangle's three corners come from: their clip-space and window
-/// positions, their colours and (for flat and Phong shading) their eye
-/// positions and normals. The whole-frame renderer reads a
-/// [`CachedVertex`] cache; the band renderer a compact cache or a
-/// per-triangle one.
-pub(crate) trait Corners {
-    /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
-    fn inside(&self, k: usize) -> bool;
-    /// Window position and depth of corner `k` (in front of the near plane).
-    fn win(&self, k: usize) -> Win;
-    /// Clip-space position of corner `k` (asked only when the triangle
-    /// crosses the near plane).
-    fn clip<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-    ) -> [i64; 4];
-    /// The lit colour of corner `k`, for its back (negated normal) if `back`.
-    fn shade<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        back: bool,
-        stats: &mut DrawStats,
-    ) -> Shade;
-    /// Eye-space position and normal of corner `k`.
-    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        normal: bool,
-    ) -> (Vec3, Unit3);
-}
-
-/// Corners from a [`CachedVertex`] cache: corner `k` is `cache[slot[k]]`,
-/// mesh vertex `vertex[k]`, already projected.
-pub(crate) struct CacheCorners<'c> {
-    pub(crate) cache: &'c mut [CachedVertex],
-    pub(crate) slot: [usize; 3],
-    pub(crate) vertex: [usize; 3],
-}
-
-impl Corners for CacheCorners<'_> {
-    #[inline(always)]
-    fn inside(&self, k: usize) -> bool {
-        let c = &self.cache[self.slot[k]];
-        c.clip[2] + c.clip[3] >= 0
-    }
-    #[inline(always)]
-    fn win(&self, k: usize) -> Win {
-        self.cache[self.slot[k]].win
-    }
-    #[inline(always)]
-    fn clip<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        _: &Frame<'_, '_, S, V, L>,
-        k: usize,
-    ) -> [i64; 4] {
-        self.cache[self.slot[k]].clip
-    }
-    #[inline(always)]
-    fn shade<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        back: bool,
-        stats: &mut DrawStats,
-    ) -> Shade {
-        f.light(&mut self.cache[self.slot[k]], self.vertex[k], back, stats)
-    }
-    #[inline(always)]
-    fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        normal: bool,
-    ) -> (Vec3, Unit3) {
-        let c = &mut self.cache[self.slot[k]];
-        let n = if normal {
-            f.normal(c, self.vertex[k])
-        } else {
-            Unit3::ZERO
-        };
-        (c.eye, n)
-    }
-}
-
 /// Per-draw constants.
 pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     pub(crate) r: &'a Renderer<S, V, L>,
@@ -1044,10 +906,10 @@ pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     /// The model-view matrix with the mesh's box folded in
     /// ([`Renderer::mesh_modelview`]), by reference: a pointer, not 64
     /// bytes, in the struct the triangle loop reads.
-    modelview: &'a Mat4,
+    pub(crate) modelview: &'a Mat4,
     pub(crate) proj: ProjectionCoeffs,
-    w: i64,
-    h: i64,
+    pub(crate) w: i64,
+    pub(crate) h: i64,
     /// The viewport: projection, window mapping and the attribute planes'
     /// anchor.
     pub(crate) viewport: ClipRect,
@@ -1104,172 +966,6 @@ fn centroid(e: [Vec3; 3]) -> Vec3 {
 }
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Transforms and projects vertex `i` unless already done this frame
-    /// (its normal is transformed when first needed).
-    #[inline(always)]
-    pub(crate) fn project(&self, c: &mut CachedVertex, i: usize) {
-        // Most calls find the vertex done (a vertex is shared by about six
-        // triangles): the test is inlined, the work is not.
-        if c.flags & F_PROJECTED == 0 {
-            self.project_now(c, i);
-        }
-    }
-
-    #[inline(never)]
-    fn project_now(&self, c: &mut CachedVertex, i: usize) {
-        self.project_into(c, i);
-    }
-
-    /// Projects every vertex of the mesh into `cache` (one per vertex), the
-    /// vertex's work inlined in one loop instead of a call per vertex
-    /// (callgrind, x86-64: about 40 instructions a vertex fewer; S1
-    /// 2.524 M → 2.473 M, S3 22.06 M → 21.34 M).
-    #[inline(never)]
-    fn project_all(&self, cache: &mut [CachedVertex]) {
-        for (i, c) in cache.iter_mut().enumerate() {
-            self.project_into(c, i);
-        }
-    }
-
-    #[inline(always)]
-    fn project_into(&self, c: &mut CachedVertex, i: usize) {
-        c.eye = self.eye_inline(i);
-        c.clip = self.proj.clip(c.eye);
-        c.win = self.window(&c.clip);
-        c.flags = F_PROJECTED;
-    }
-
-    /// Eye-space position of mesh vertex `i`.
-    #[inline]
-    pub(crate) fn eye(&self, i: usize) -> Vec3 {
-        self.eye_inline(i)
-    }
-
-    /// [`Frame::eye`], always inlined: for the loops over every vertex.
-    /// The mesh's `i16` position goes straight into the matrix that has
-    /// the box folded in (no sum can overflow:
-    /// [`Mat4::transform_quantised`]).
-    #[inline(always)]
-    pub(crate) fn eye_inline(&self, i: usize) -> Vec3 {
-        self.modelview.transform_quantised(self.mesh.positions[i])
-    }
-
-    /// Eye-space normal of mesh vertex `i`: its octahedral point
-    /// transformed, then normalised once.
-    #[inline]
-    pub(crate) fn eye_normal(&self, i: usize) -> Unit3 {
-        match self.mesh.normals {
-            Some(ns) => self.normal_to_eye(ns[i].octahedron()),
-            None => Unit3::ZERO,
-        }
-    }
-
-    /// The eye-space normal of cached vertex `c` (mesh vertex `i`),
-    /// transformed unless already done this frame.
-    #[inline]
-    fn normal(&self, c: &mut CachedVertex, i: usize) -> Unit3 {
-        if c.flags & F_NORMAL == 0 {
-            c.normal = self.eye_normal(i);
-            c.flags |= F_NORMAL;
-        }
-        c.normal
-    }
-
-    /// `N_eye = normalise(M_n · N)` for `N` a point of the octahedron
-    /// ([`PackedNormal::octahedron`]): `|M_n| ≤ 2¹⁴` and `Σ|N| ≤ 3·2¹⁵`
-    /// (32767 for the encoder's bits), so each row's sum of 16 × 16-bit
-    /// products is at most `3·2²⁹ < 2³¹`.
-    ///
-    /// [`PackedNormal::octahedron`]: crate::mesh::PackedNormal::octahedron
-    #[inline]
-    fn normal_to_eye(&self, b: [i32; 3]) -> Unit3 {
-        let m = &self.r.normal_m;
-        let row = |r: usize| m[r][0] as i32 * b[0] + m[r][1] as i32 * b[1] + m[r][2] as i32 * b[2];
-        normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
-    }
-
-    /// Window position (1/16 pixel, clamped to ±2²⁸) and depth attribute of
-    /// a clip-space point in front of the near plane (SPEC.md 1, 5):
-    /// `X = ⌊x_w·16 + ½⌋`, `Z = ⌊z_w·65535·2⁸ + 2⁷⌋` (clamped to ±2³⁰).
-    ///
-    /// The depth attribute is scaled so that `Z >> 8` is SPEC.md 5's
-    /// quantised depth `d = ⌊z_w·65535 + ½⌋`: with `z_w = (z_c/w + 1)/2`,
-    /// `z_w·65535·2⁸ + 2⁷ = z_c·K/w + 2²³` where `K = 65535·2⁷ = 2²³ − 2⁷`
-    /// (the offset `65535·2⁷ + 2⁷` is `2²³`), so `Z = ⌊z_c·K/w⌋ + 2²³`, and
-    /// `⌊⌊x⌋/2⁸⌋ = ⌊x/2⁸⌋` makes `Z >> 8 = ⌊z_w·65535 + ½⌋` exactly for the
-    /// clip coordinates given. The span loop takes `Z >> 8` per pixel as
-    /// before; only this per-vertex scale changed.
-    ///
-    /// `|x_c|, |z_c| < 2³⁸ + 2³¹` (a projection coefficient below 2³¹ raw
-    /// times an `I8F24` coordinate, shifted by 24, plus an offset below
-    /// 2³¹), `8W ≤ 2²³` and `2K < 2²⁴`: `|2·x_c·8W|`, `|z_c·2²⁴|` and
-    /// `|2·z_c·K|` are below `2⁶² + 2⁵⁵`; with `0 < w < 2³²`, each
-    /// numerator is within ±(2⁶² + 2⁵⁶), so it minus the divisor `2w`
-    /// (below 2³³) stays within `i64` ([`floor_div_all`]'s conditions).
-    #[inline]
-    pub(crate) fn window(&self, c: &[i64; 4]) -> Win {
-        let w = c[3];
-        if w <= 0 {
-            return [0, 0, 0];
-        }
-        let (hw, hh) = (8 * self.w, 8 * self.h);
-        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w), each rounded
-        // (the `+ w` over `2w`); the depth z_c·K/w floored, 2K = 2²⁴ − 2⁸.
-        // The quotients are exact within ±2³¹, beyond which each clamp
-        // below decides alike (the offsets 8W, 8H and 2²³ are at most 2²³,
-        // the clamps at 2²⁸ and 2³⁰).
-        let n = [
-            mul_by_narrow(2 * c[0], hw) + w,
-            mul_by_narrow(-2 * c[1], hh) + w,
-            mul_by_narrow(c[2], (1 << 24) - (1 << 8)),
-        ];
-        let [x, y, z] = if crate::platform::SOFT_DIV64 {
-            floor_div_all(n, 2 * w)
-        } else {
-            // (Each division written out: as an array map, x86-64 took
-            // 4 to 36 instructions more per vertex, by scheduling.)
-            [
-                floor_div(n[0], 2 * w),
-                floor_div(n[1], 2 * w),
-                floor_div(n[2], 2 * w),
-            ]
-        };
-        [
-            (x + hw).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
-            (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
-            (z + (1 << 23)).clamp(-(1 << 30), 1 << 30) as i32,
-        ]
-    }
-
-    /// Lights cached vertex `c` (mesh vertex `i`) for the given facing
-    /// unless already done.
-    #[inline(always)]
-    fn light(&self, c: &mut CachedVertex, i: usize, back: bool, stats: &mut DrawStats) -> Shade {
-        // As in `project`: the test inlined, the lighting not.
-        let flag = if back { F_BACK } else { F_FRONT };
-        if c.flags & flag == 0 {
-            self.light_now(c, i, back, stats);
-        }
-        if back {
-            c.back
-        } else {
-            c.front
-        }
-    }
-
-    #[inline(never)]
-    fn light_now(&self, c: &mut CachedVertex, i: usize, back: bool, stats: &mut DrawStats) {
-        let n = self.normal(c, i);
-        if back {
-            c.back = self.r.lighting.shade(c.eye, n.neg());
-            c.flags |= F_BACK;
-        } else {
-            c.front = self.r.lighting.shade(c.eye, n);
-            c.flags |= F_FRONT;
-        }
-        stats.lit = stats.lit.saturating_add(1);
-    }
-
     /// Clips, culls, lights and rasterizes one triangle (its rows in
     /// `self.rows`).
     ///
@@ -1280,9 +976,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// set up their walks (callgrind, S1 in cached 16-row bands: 3.113 M out
     /// of line, 3.060 M inlined).
     #[inline(always)]
-    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest, C: Corners>(
+    pub(crate) fn triangle<M: ShadingMode, P: PixelSink, D: DepthTest>(
         &self,
-        c: &mut C,
+        c: &mut Corners,
         sink: &mut P,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -1300,7 +996,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // before anything else is built (S1 culls 1 618 of 2 208
             // triangles: a 96-byte clear and two copies each spared on a
             // Cortex-M4).
-            let w = [c.win(0), c.win(1), c.win(2)];
+            let w = c.wins(self);
             let a = win_area(&w, [0, 1, 2]);
             if self.rejects(a, &w) {
                 return Ok(());
@@ -1335,7 +1031,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             for (k, p) in poly[..count].iter().enumerate() {
                 win[k] = match *p {
-                    PolyVert::Orig(i) => c.win(i),
+                    PolyVert::Orig(i) => c.win(self, i),
                     PolyVert::Cut { a, b, num, den } => {
                         self.window(&cut(&clip[a], &clip[b], num, den))
                     }

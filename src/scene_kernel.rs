@@ -21,7 +21,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
 
-use crate::band::{BandVertex, Bands, Cached, Recomputed};
+use crate::band::{Bands, Cached, Recomputed};
 use crate::camera::{Camera, CameraError, Projection};
 use crate::color::{Rgb, Shade};
 use crate::depth::{DepthBand, DepthBuffer, DepthTest, NoDepth};
@@ -435,18 +435,18 @@ impl KernelScene {
     /// [`Renderer::draw_bands`]: bands of `band_height` rows through
     /// `colour` (at least `width × band_height` pixels) and, if the scene
     /// has a depth test, `depth` (as many values). `vertices`: `Some` cache
-    /// of one [`BandVertex`] per vertex ([`Cached`] mode), or `None`
+    /// of one [`CachedVertex`] per vertex ([`Cached`] mode), or `None`
     /// ([`Recomputed`]). The pixels are those of [`KernelScene::render`].
     ///
     /// ```
-    /// use fixshade::{band::BandVertex, framebuffer::Framebuffer};
+    /// use fixshade::{render::CachedVertex, framebuffer::Framebuffer};
     /// use fixshade::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
     /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
     /// let frame = k.render_frame().unwrap(); // through `render`
     /// let mut px = [0u16; 32 * 24];
     /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
     /// let (mut colour, mut depth) = ([0u16; 32 * 5], [0u16; 32 * 5]); // bands of 5 rows
-    /// let mut vertices = vec![BandVertex::default(); k.mesh().positions.len()];
+    /// let mut vertices = vec![CachedVertex::default(); k.mesh().positions.len()];
     /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, Some(&mut vertices)).unwrap();
     /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
     /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, None).unwrap();
@@ -458,7 +458,7 @@ impl KernelScene {
         band_height: u32,
         colour: &mut [u16],
         depth: &mut [u16],
-        vertices: Option<&mut [BandVertex]>,
+        vertices: Option<&mut [CachedVertex]>,
     ) -> Result<DrawStats, RenderError<T::Error>> {
         let size = target.bounding_box().size;
         let mut out = BandDrawer {
@@ -725,7 +725,7 @@ impl<F: FrameDrawer> Drawer for F {
 struct BandDrawer<'t, 'b, 'c, T> {
     target: &'t mut T,
     bands: Bands<'b>,
-    vertices: Option<&'c mut [BandVertex]>,
+    vertices: Option<&'c mut [CachedVertex]>,
 }
 
 impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, T> {

@@ -1060,7 +1060,7 @@ fn target_box_read_once() {
     let mesh = Mesh::new(&p, b, &i);
     let r = facing_renderer();
     let mut cache = [CachedVertex::default(); 4];
-    let mut band_cache = [fixshade::band::BandVertex::default(); 4];
+    let mut band_cache = [fixshade::render::CachedVertex::default(); 4];
     let mut z = [0u16; 16 * 16];
     for height in [1, 4, 16] {
         let mut colour = [0u16; 16 * 16];

@@ -7,7 +7,6 @@ use embedded_graphics::geometry::{OriginDimensions, Size};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
-use fixshade::band::BandVertex;
 use fixshade::framebuffer::Framebuffer;
 use fixshade::render::{CachedVertex, DrawStats, RenderError};
 use fixshade::scene_desc::{SceneDesc, Shading};
@@ -69,7 +68,7 @@ fn banded(k: &KernelScene, h_band: u32, cached: bool) -> (Vec<u16>, DrawStats) {
     let n = (w * h_band) as usize;
     let mut colour = vec![0u16; n];
     let mut depth = vec![0u16; n];
-    let mut cache = vec![BandVertex::default(); k.mesh().positions.len()];
+    let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
     let mut t = Counting {
         fb: Framebuffer::new(&mut px, w, h).unwrap(),
         fills: 0,
@@ -200,7 +199,7 @@ fn too_small_buffers_are_errors() {
     let k = KernelScene::new(&standard_scenes::s1(40, 30)).unwrap();
     let mut px = vec![0u16; 40 * 30];
     let mut fb = Framebuffer::new(&mut px, 40, 30).unwrap();
-    let mut cache = vec![BandVertex::default(); k.mesh().positions.len()];
+    let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
     let (mut colour, mut depth) = (vec![0u16; 40 * 4], vec![0u16; 40 * 4]);
     let r = k.render_bands(&mut fb, 5, &mut colour, &mut depth, None);
     assert_eq!(r, Err(RenderError::BandTooSmall));

@@ -31,7 +31,6 @@ use embedded_graphics::geometry::{Dimensions, Point, Size};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::primitives::{PointsIter, Rectangle};
 use embedded_graphics::Pixel;
-use fixshade::band::BandVertex;
 use fixshade::camera::{Camera, Projection as CamProjection};
 use fixshade::framebuffer::Framebuffer;
 use fixshade::generate;
@@ -1001,7 +1000,7 @@ fn writes_all_paths(what: &str, scene: &SceneDesc) -> CountingTarget {
             let mut fb = Framebuffer::new(&mut px, w, h).expect("framebuffer");
             let n = (w * band) as usize;
             let (mut colour, mut z) = (vec![0u16; n], vec![0u16; n]);
-            let mut verts = vec![BandVertex::default(); scene.mesh.positions.len()];
+            let mut verts = vec![CachedVertex::default(); scene.mesh.positions.len()];
             let v = cached.then_some(&mut verts[..]);
             let stats = k
                 .render_bands(&mut fb, band, &mut colour, &mut z, v)
