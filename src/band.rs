@@ -369,19 +369,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         for (t, tri) in mesh.indices.iter().enumerate() {
             let idx = tri.map(|i| i as usize);
             let rows = if X::CACHED {
-                let c = Corners {
-                    cache,
-                    slot: idx,
-                    vertex: idx,
-                };
-                visible_rows(&frame, &c, cull)
+                visible_rows(&frame, &Corners::of(cache, idx), cull)
             } else {
-                let c = Corners {
-                    cache: &mut project3(&frame, idx),
-                    slot: [0, 1, 2],
-                    vertex: idx,
-                };
-                visible_rows(&frame, &c, cull)
+                let mut three = project3(&frame, idx);
+                visible_rows(&frame, &Corners::of_three(&mut three, idx), cull)
             };
             if let Some((lo, hi)) = rows {
                 let (r, j) = (t / runs.per, t % runs.per);
@@ -532,7 +523,7 @@ fn project3<S: Specular, V: Viewer, L: LightSet>(
     l
 }
 
-/// Draws triangle `idx` in the current band from the compact cache, after
+/// Draws triangle `idx` in the current band from the frame's cache, after
 /// rejecting it by its rows.
 #[inline(always)]
 fn band_triangle_cached<M, P, D, S, V, L>(
@@ -561,12 +552,7 @@ where
             return Ok(());
         }
     }
-    let mut c = Corners {
-        cache,
-        slot: idx,
-        vertex: idx,
-    };
-    f.triangle::<M, P, D>(&mut c, sink, depth, stats)
+    f.triangle::<M, P, D>(&mut Corners::of(cache, idx), sink, depth, stats)
 }
 
 /// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
@@ -587,12 +573,8 @@ where
     V: Viewer,
     L: LightSet,
 {
-    let mut l = project3(f, idx);
-    let mut c = Corners {
-        cache: &mut l,
-        slot: [0, 1, 2],
-        vertex: idx,
-    };
+    let mut three = project3(f, idx);
+    let mut c = Corners::of_three(&mut three, idx);
     if c.inside(0) && c.inside(1) && c.inside(2) {
         let w = c.wins(f);
         let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);

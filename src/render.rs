@@ -744,12 +744,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         frame.each_tile(|frame| {
             for tri in mesh.indices {
                 let idx = tri.map(|i| i as usize);
-                let mut corners = Corners {
-                    cache,
-                    slot: idx,
-                    vertex: idx,
-                };
-                frame.triangle::<M, P, D>(&mut corners, sink, depth, &mut stats)?;
+                frame.triangle::<M, P, D>(&mut Corners::of(cache, idx), sink, depth, &mut stats)?;
             }
             Ok(())
         })?;

@@ -8,7 +8,8 @@
 //! needs its colour. Everything else a triangle may need of a vertex (its
 //! eye position and normal for flat and Phong shading and for lighting,
 //! its clip coordinates where a triangle crosses the near plane or the
-//! guard band, its window position when it lies far outside the target) is
+//! guard band, its window position when a coordinate lies outside
+//! [−2 048, 2 048) pixels of the target's top-left corner) is
 //! computed again from the mesh: the same functions of the same inputs,
 //! so the same values, and no bytes kept for the rare paths.
 //!
@@ -43,11 +44,11 @@ const B_INSIDE: u64 = 1 << 51;
 const B_FRONT: u64 = 1 << 52;
 /// The colour is the back face's (negated normal).
 const B_BACK: u64 = 1 << 53;
-/// A window coordinate lies outside `i16` (more than 2 047 pixels left of
-/// or above the viewport, or 2 048 right of or below its origin): `x`, `y`
-/// are not kept, and [`Corners::win`] computes them again. A target of
-/// one tile (at most [`CLIP_LIMIT`](crate::rasterizer::CLIP_LIMIT) = 2 032 pixels a side) has
-/// its guard band, `±(2¹⁴ − 16)` sixteenths around its centre, within
+/// A window coordinate lies outside `i16` (outside [−2 048, 2 048) pixels
+/// of the target's top-left corner): `x`, `y` are not kept, and
+/// [`Corners::win`] computes them again. A target of one tile (at most
+/// [`CLIP_LIMIT`](crate::rasterizer::CLIP_LIMIT) = 2 032 pixels a side)
+/// has its guard band, `±(2¹⁴ − 16)` sixteenths around its centre, within
 /// `[−2¹⁴, 2¹⁵)`: every vertex the set-up takes as it is has its position
 /// kept.
 const B_FAR: u64 = 1 << 54;
@@ -171,12 +172,33 @@ fn unpack(v: u64) -> Shade {
 /// the band renderer's cached mode index the frame's cache (`slot =
 /// vertex`), its recomputed mode a cache of three.
 pub(crate) struct Corners<'c> {
-    pub(crate) cache: &'c mut [CachedVertex],
-    pub(crate) slot: [usize; 3],
-    pub(crate) vertex: [usize; 3],
+    cache: &'c mut [CachedVertex],
+    slot: [usize; 3],
+    vertex: [usize; 3],
 }
 
-impl Corners<'_> {
+impl<'c> Corners<'c> {
+    /// Triangle `idx` (mesh vertex indices) of a cache of one entry per
+    /// mesh vertex.
+    #[inline(always)]
+    pub(crate) fn of(cache: &'c mut [CachedVertex], idx: [usize; 3]) -> Self {
+        Corners {
+            cache,
+            slot: idx,
+            vertex: idx,
+        }
+    }
+
+    /// Triangle `idx` from a cache of its three corners, in order.
+    #[inline(always)]
+    pub(crate) fn of_three(cache: &'c mut [CachedVertex; 3], idx: [usize; 3]) -> Self {
+        Corners {
+            cache,
+            slot: [0, 1, 2],
+            vertex: idx,
+        }
+    }
+
     /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
     #[inline(always)]
     pub(crate) fn inside(&self, k: usize) -> bool {
