@@ -398,17 +398,31 @@ impl ProjectionCoeffs {
     #[inline]
     pub fn clip(&self, e: Vec3) -> [i64; 4] {
         let b = e.to_bits();
-        let mul = |c: i32, v: i32| (mul_i32(c, v) + (1 << (COORD_FRAC - 1))) >> COORD_FRAC;
-        let w = if self.perspective {
-            -(b[2] as i64)
-        } else {
-            1i64 << COORD_FRAC
-        };
+        let [z, w] = self.depth_clip(b[2]);
         [
-            mul(self.sx, b[0]) + self.tx as i64,
-            mul(self.sy, b[1]) + self.ty as i64,
-            mul(self.a, b[2]) + self.b as i64,
+            coeff_mul(self.sx, b[0]) + self.tx as i64,
+            coeff_mul(self.sy, b[1]) + self.ty as i64,
+            z,
             w,
         ]
     }
+
+    /// `[z_c, w_c]` of [`ProjectionCoeffs::clip`] from the eye-space depth
+    /// alone (raw `I8F24`): the vertex stage's near-plane test and depth.
+    #[inline(always)]
+    pub(crate) fn depth_clip(&self, z: i32) -> [i64; 2] {
+        let w = if self.perspective {
+            -(z as i64)
+        } else {
+            1i64 << COORD_FRAC
+        };
+        [coeff_mul(self.a, z) + self.b as i64, w]
+    }
+}
+
+/// A `Q.24` coefficient times a raw `I8F24` coordinate, rounded to raw
+/// units (below 2³⁸ in magnitude).
+#[inline(always)]
+fn coeff_mul(c: i32, v: i32) -> i64 {
+    (mul_i32(c, v) + (1 << (COORD_FRAC - 1))) >> COORD_FRAC
 }

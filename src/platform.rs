@@ -63,6 +63,34 @@ pub(crate) const fn armv7m() -> bool {
     cfg!(all(target_arch = "arm", target_has_atomic = "32"))
 }
 
+/// `x.leading_zeros()`. ARMv6-M has no count-leading-zeros instruction,
+/// and the library's (`__clzsi2`) is a call of about 30 instructions:
+/// there, five inline halving steps.
+#[inline(always)]
+pub(crate) fn leading_zeros(x: u32) -> u32 {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        leading_zeros_halving(x)
+    } else {
+        x.leading_zeros()
+    }
+}
+
+/// [`leading_zeros`] in halving steps.
+#[inline(always)]
+fn leading_zeros_halving(x: u32) -> u32 {
+    if x == 0 {
+        return 32;
+    }
+    let (mut x, mut n) = (x, 0);
+    for k in [16, 8, 4, 2, 1] {
+        if x >> (32 - k) == 0 {
+            n += k;
+            x <<= k;
+        }
+    }
+    n
+}
+
 /// `(r & 0xF800F800) | ((g & 0xFC00FC00) >> 5) | ((b & 0xF800F800) >> 11)`:
 /// two RGB565 pixels from three words of two 16-bit lanes each (red, green,
 /// blue; the low lanes make the low pixel).
@@ -112,4 +140,21 @@ pub(crate) fn pack_565_pair(r: u32, g: u32, b: u32) -> u32 {
 #[inline(always)]
 pub(crate) fn keep_loop_rolled() {
     core::hint::black_box(());
+}
+
+#[cfg(test)]
+mod tests {
+    /// The halving steps count as the instruction does: zero, every power
+    /// of two and its neighbours, and a sweep of other values.
+    #[test]
+    fn leading_zeros_forms_agree() {
+        let mut xs = vec![0u32, 1, u32::MAX];
+        for k in 0..32 {
+            xs.extend([1u32 << k, (1u32 << k).wrapping_sub(1), (1u32 << k) | 1]);
+        }
+        xs.extend((0..100_000u32).map(|i| i.wrapping_mul(0x9E37_79B9) >> (i % 32)));
+        for x in xs {
+            assert_eq!(super::leading_zeros_halving(x), x.leading_zeros(), "{x:#x}");
+        }
+    }
 }

@@ -313,7 +313,12 @@ impl Recip {
     /// For `a > 0` (at most 2⁶⁰).
     pub(crate) fn new(a: i64) -> Recip {
         let a = a as u64;
-        let bits = 64 - a.leading_zeros();
+        let hi = (a >> 32) as u32;
+        let bits = if hi != 0 {
+            64 - crate::platform::leading_zeros(hi)
+        } else {
+            32 - crate::platform::leading_zeros(a as u32)
+        };
         // a ≈ a32 · 2^e with a32 ∈ [2^31, 2^32).
         let (a32, e) = if bits > 32 {
             (a >> (bits - 32), (bits - 32) as i32)
@@ -348,6 +353,69 @@ impl Recip {
             self.div_i64_narrow(num, sh) as i128
         } else {
             self.div_i64_limbs(num, up)
+        }
+    }
+
+    /// `num / (a·2^down)` rounded to nearest (halves away from zero), for
+    /// any `num` and `down`, where the quotients that matter are below
+    /// `2^bits` (`bits ≤ 29`): within `2^(bits − 30)` of the exact quotient
+    /// `q` (plus the rounding's ½) while `|q| < 2^bits`, within `|q|·2⁻²⁹`
+    /// beyond, or ±[`QUOT_SAT`] where `|q|` reaches 2³¹ (a result the
+    /// callers clamp anyway).
+    ///
+    /// `q = num·m/2^t`, `t = sh + down`, `m ∈ (2³¹, 2³²]`. A quotient
+    /// below `2^bits` has `|num| < 2^(bits + t − 31)`: shifted right by `s =
+    /// max(0, bits + t − 62)` it is below 2³¹ (`n`), and `n·m/2^(t − s)`,
+    /// `t − s ≥ 33` (for `t ≥ 33`), rounds from the product's high word
+    /// alone: `⌊⌊p/2³²⌋/2^(t − s − 33)⌋ = ⌊2p/2^(t − s)⌋`, whose half rounded
+    /// up is the nearest. The bits dropped from `num` move `q` by at most
+    /// `m/2^(t − s) ≤ 2^(bits − 30)`, `m`'s relative error of 2⁻³¹ by
+    /// `|q|·2⁻³¹`. A larger numerator (a far vertex), or `t < 33`, takes
+    /// [`Recip::div_normalised`].
+    #[inline(always)]
+    pub(crate) fn div_scaled(self, num: i64, down: i32, bits: i32) -> i64 {
+        debug_assert!(bits <= 29);
+        let t = self.sh as i32 + down;
+        let s = (bits + t - 62).max(0) as u32;
+        let a = num.unsigned_abs();
+        match shr_u64_below_2_31(a, s) {
+            Some(n) if t >= 33 => {
+                let m = self.m as u64;
+                // ⌊n·m/2³²⌋ (m = 2³² has a zero low word: then n).
+                let hi = if m >> 32 != 0 {
+                    n
+                } else {
+                    (mul_u32(n, m as u32) >> 32) as u32
+                };
+                let q = ((hi >> (t as u32 - s - 33)) + 1) >> 1;
+                if num >= 0 {
+                    q as i64
+                } else {
+                    -(q as i64)
+                }
+            }
+            _ => self.div_normalised(num, t),
+        }
+    }
+
+    /// [`Recip::div_scaled`] for any numerator and shift `t`: the numerator
+    /// cut to its top 31 bits (`n ≥ 2³⁰` when any were dropped, a relative
+    /// error below 2⁻³⁰), so the quotient is within `½ + |q|·2⁻²⁹`. With
+    /// the shift below 1, `|q| ≥ n·m/2 ≥ 2³⁰` for `n ≥ 1`; above 63,
+    /// `|q| < 2⁶³/2⁶⁴` rounds to 0. (Rare: far vertices.)
+    #[inline(never)]
+    fn div_normalised(self, num: i64, t: i32) -> i64 {
+        let a = num.unsigned_abs();
+        let s = (64 - a.leading_zeros()).saturating_sub(31);
+        let n = (a >> s) as i64;
+        let n = if num < 0 { -n } else { n };
+        let sh = t - s as i32;
+        if sh < 1 {
+            n.signum() * QUOT_SAT
+        } else if sh > 63 {
+            0
+        } else {
+            self.div_i64_narrow(n, sh as u32)
         }
     }
 
@@ -400,6 +468,24 @@ impl Recip {
         }
     }
 }
+
+/// `⌊a / 2^s⌋` if it is below 2³¹, in 32-bit shifts (a 64-bit shift by
+/// a variable amount is a library call on a Cortex-M0).
+#[inline(always)]
+fn shr_u64_below_2_31(a: u64, s: u32) -> Option<u32> {
+    let (hi, lo) = ((a >> 32) as u32, a as u32);
+    let n = match s {
+        0 => (hi == 0).then_some(lo),
+        1..=31 => (hi >> s == 0).then(|| hi << (32 - s) | lo >> s),
+        32..=63 => Some(hi >> (s - 32)),
+        _ => Some(0),
+    }?;
+    (n >> 31 == 0).then_some(n)
+}
+
+/// What [`Recip::div_scaled`] returns for a quotient of 2³¹ or more (its
+/// sign kept).
+pub(crate) const QUOT_SAT: i64 = 1 << 40;
 
 /// On 32-bit targets, numerators below this take [`Recip::div_i64_narrow`].
 const NARROW_NUM: u64 = 1 << 31;
@@ -637,6 +723,53 @@ pub(crate) mod tests {
             }
         }
         assert!(narrow > 1_000_000, "{narrow}");
+    }
+
+    /// [`Recip::div_scaled`] is within its stated bound of the exact
+    /// quotient `num / (a·2^down)`: divisors of every bit length up to 2³¹
+    /// (a vertex's `w`), numerators of both signs and every magnitude,
+    /// shifts either way, each `bits` the callers pass; quotients of 2³¹
+    /// or more saturate.
+    #[test]
+    fn scaled_quotient_is_within_its_bound() {
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
+        let mut fast = 0;
+        for _ in 0..300_000 {
+            let a = (next() >> (33 + next() % 31)).max(1) as i64;
+            let r = Recip::new(a);
+            let down = (next() % 80) as i32 - 20;
+            let bits = [16, 24, 29][(next() % 3) as usize];
+            let n = (next() >> (next() % 64)) as i64;
+            let num = if next() & 1 == 0 { n } else { -n };
+            // In f64: a relative error near 2^-52, inside the tolerance.
+            let exact = if down >= 0 {
+                ((num as f64) / (a as f64)) / (down as f64).exp2()
+            } else {
+                ((num as f64) / (a as f64)) * (-down as f64).exp2()
+            };
+            let got = r.div_scaled(num, down, bits);
+            if exact.abs() >= (1u64 << 31) as f64 * (1.0 + 1e-9) {
+                assert!(
+                    got.abs() >= 1 << 30,
+                    "{num} / {a}·2^{down}: {got}, want ≈ {exact}"
+                );
+                continue;
+            }
+            if exact.abs() < (1u64 << 30) as f64 {
+                let small = exact.abs() < (bits as f64).exp2();
+                fast += small as u32;
+                let tol = if small {
+                    0.5 + (bits as f64 - 30.0).exp2() + exact.abs() * 2f64.powi(-31)
+                } else {
+                    0.5 + exact.abs() * 2f64.powi(-29)
+                } + 1e-6 * (1.0 + exact.abs() * 1e-9);
+                assert!(
+                    (got as f64 - exact).abs() <= tol,
+                    "{num} / {a}·2^{down} ({bits}): {got}, want {exact}"
+                );
+            }
+        }
+        assert!(fast > 10_000, "{fast}");
     }
 
     /// The two-limb quotient of 32-bit targets equals the 128-bit one, for

@@ -70,7 +70,7 @@ use crate::span::{
 };
 use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
 pub use crate::vertex::CachedVertex;
-use crate::vertex::{Corners, Win};
+use crate::vertex::{Corners, Fold, Win};
 
 /// Which shading mode a type selects.
 ///
@@ -780,6 +780,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             r: self,
             mesh,
             modelview,
+            fold: Fold::new(modelview, &proj, w as i64, h as i64),
             proj,
             w: w as i64,
             h: h as i64,
@@ -804,75 +805,93 @@ fn win_area(win: &[Win], corners: [usize; 3]) -> i64 {
 /// Whether snapping may have given the triangle of window positions `w`
 /// (its first three) a doubled area `a` ([`win_area`]) of another sign
 /// than its unsnapped positions have, or made it zero: then
-/// [`clip_orientation`] decides.
+/// [`turned_over`] decides.
 ///
-/// Each unsnapped coordinate `x` (1/16 pixel) becomes `X = ⌊x + ½⌋`: the
-/// snapped corner is `Sₖ = Pₖ + eₖ`, both components of `eₖ` in `(−½, ½]`.
-/// The doubled area is the cyclic sum `a = Σ Sₖ × Sₖ₊₁`, so the unsnapped
-/// one is `A = Σ (Sₖ − eₖ) × (Sₖ₊₁ − eₖ₊₁)
-/// = a − Σ eₖ × (Sₖ₊₁ − Sₖ₋₁) + Σ eₖ × eₖ₊₁`. Each `eₖ × d` is at most
-/// `½(|d_x| + |d_y|)`, and the last sum is the doubled area of a triangle
-/// inside a square of side 1, at most 1: `|A − a| ≤ p/2 + 1`, `p` the sum
-/// of `|dx| + |dy|` over the three sides. When `2|a| > p + 2`, `A` is not
-/// zero and has `a`'s sign. A sliver of longest side `L` and height `h`
-/// (its other two sides summing to about `L`) has `2|a| = 2Lh` and `p` at
-/// most about `2√2·L`: only slivers less than about √2/16 pixel thick, and
-/// triangles a few 1/16 pixel across, ask for the exact sign.
+/// Each unsnapped coordinate `x` (1/16 pixel, [`Frame::homogeneous`])
+/// becomes `X`, within `½ + ε` of it: `ε ≤ 1/16` for `|x| ≤ 2²⁴`
+/// ([`Recip::div_scaled`](crate::rasterizer::Recip)'s error). The snapped
+/// corner is `Sₖ = Pₖ + eₖ`, both components of `eₖ` within `½ + ε`. The
+/// doubled area is the cyclic sum `a = Σ Sₖ × Sₖ₊₁`, so the unsnapped one
+/// is `A = Σ (Sₖ − eₖ) × (Sₖ₊₁ − eₖ₊₁) = a − Σ eₖ × (Sₖ₊₁ − Sₖ₋₁) + Σ eₖ ×
+/// eₖ₊₁`. Each `eₖ × d` is at most `(½ + ε)(|d_x| + |d_y|)`, and the last
+/// sum is the doubled area of a triangle inside a square of side `1 + 2ε`,
+/// at most `(1 + 2ε)²`: `|A − a| ≤ (½ + ε)·p + (1 + 2ε)²`, `p` the sum of
+/// `|dx| + |dy|` over the three sides. With `ε = 1/16`, when `2|a| > p +
+/// p/8 + 3` (above `(1 + 2ε)·p + 2·(1 + 2ε)²`), `A` is not zero and has
+/// `a`'s sign. A sliver of longest side `L` and height `h` (its other two
+/// sides summing to about `L`) has `2|a| = 2Lh` and `p` at most about
+/// `2√2·L`: only slivers less than about 1/6 pixel thick, and triangles a
+/// few 1/16 pixel across, ask for the exact sign.
 ///
 /// Ranges: coordinates within ±2²⁸ (`window` clamps them), so each
 /// difference is within ±2²⁹ and is the difference of the low 32 bits
 /// (`i32`, one instruction on a 32-bit core), each side's `|dx| + |dy|` is
-/// at most 2³⁰ and `p + 2` below 2³² (`u32`); `2|a|` is below 2⁶¹. A corner
-/// that `window` clamped (its unsnapped position beyond ±2²⁴ pixels) moved
-/// further than the snapping, which the bound does not cover: such a
-/// triangle keeps its snapped orientation unless the bound asks.
+/// at most 2³⁰, `p` below 2³² and `p + p/8 + 3` below 2³³ (`u64`); `2|a|`
+/// is below 2⁶¹. A corner beyond ±2²⁴ (clamped, or `ε` above 1/16) is
+/// further off than the bound covers: such a triangle keeps its snapped
+/// orientation unless the bound asks.
 #[inline(always)]
 fn snap_may_flip(a: i64, w: &[Win]) -> bool {
     let d = |j: usize, k: usize, i: usize| w[k][i].wrapping_sub(w[j][i]);
     let side = |j: usize, k: usize| d(j, k, 0).unsigned_abs() + d(j, k, 1).unsigned_abs();
-    2 * a.unsigned_abs() <= u64::from(side(0, 1) + side(1, 2) + side(2, 0) + 2)
+    let p = u64::from(side(0, 1) + side(1, 2) + side(2, 0));
+    2 * a.unsigned_abs() <= p + (p >> 3) + 3
 }
 
 /// The sign of the doubled window-space area ([`win_area`]: −1 for a front
 /// face, 1 for a back face, 0 for none) of the triangle whose clip-space
-/// corners are `c`, before snapping.
+/// corners are `c`, before snapping: the facing of a triangle that the
+/// near plane cuts.
 ///
 /// The window position of `(x, y, w)` is `16·(x_w, y_w) = (8W·(x/w + 1),
-/// 8H·(1 − y/w))` ([`Frame::window`] before its floor), so the doubled
+/// 8H·(1 − y/w))` ([`Frame::window`] before its rounding), so the doubled
 /// area of three corners is `−64WH·D / (w₀w₁w₂)` with `D` the determinant
 /// of the rows `(xₖ, yₖ, wₖ)`: with every `w > 0` (corners in front of
-/// the near plane) its sign is `D`'s, negated. For a triangle the near plane cuts this is also the sign of
-/// each piece in front of it: clip space is linear, a piece's corners are
-/// `Λ·c` with `Λ` their barycentric coordinates (kept in the triangle's
-/// order by the clipping, `det Λ > 0`) and their determinant is
-/// `det Λ · D` (up to the rounding of the cut points, which moves them by
-/// at most half a clip unit).
+/// the near plane) its sign is `D`'s, negated. For a triangle the near
+/// plane cuts this is also the sign of each piece in front of it: clip
+/// space is linear, a piece's corners are `Λ·c` with `Λ` their barycentric
+/// coordinates (kept in the triangle's order by the clipping, `det Λ > 0`)
+/// and their determinant is `det Λ · D` (up to the rounding of the cut
+/// points, which moves them by at most half a clip unit).
 ///
 /// Ranges ([`ProjectionCoeffs::clip`]): `|x|, |y| < 2³⁹` (a product below
 /// 2⁶² shifted by 24, plus a translation below 2³¹) and `|w| ≤ 2³¹` (an
 /// `I8F24` coordinate, or 2²⁴): each 2 × 2 minor is below 2⁷¹ (with `w`)
 /// or 2⁷⁹ (`x` by `y`), each term below 2¹¹⁰, `D` below 2¹¹²: `i128`.
-/// Asked only for slivers and triangles that the near plane cuts.
 ///
 /// [`ProjectionCoeffs::clip`]: crate::camera::ProjectionCoeffs::clip
 #[inline(never)]
 fn clip_orientation(c: &[[i64; 4]; 3]) -> i64 {
     let [x, y, w] = [0, 1, 3].map(|i| c.map(|p| p[i] as i128));
-    let d = x[0] * (y[1] * w[2] - y[2] * w[1]) - y[0] * (x[1] * w[2] - x[2] * w[1])
-        + w[0] * (x[1] * y[2] - x[2] * y[1]);
-    -(d.signum() as i64)
+    -det3(x, y, w).signum() as i64
 }
 
-/// Whether the triangle of corners `c` faces otherwise than its snapped
-/// doubled area `a` says: the exact test behind [`snap_may_flip`], out of
-/// line (it is rare).
+/// The determinant of the rows `(xₖ, yₖ, wₖ)`, in `i128` (the callers
+/// bound it).
+fn det3(x: [i128; 3], y: [i128; 3], w: [i128; 3]) -> i128 {
+    x[0] * (y[1] * w[2] - y[2] * w[1]) - y[0] * (x[1] * w[2] - x[2] * w[1])
+        + w[0] * (x[1] * y[2] - x[2] * y[1])
+}
+
+/// Whether the unclipped triangle of corners `c` faces otherwise than its
+/// snapped doubled area `a` says: the exact test behind
+/// [`snap_may_flip`], out of line (it is rare).
+///
+/// Its window positions before rounding are `(Xₖ/(wₖ·2^dx) + 8W,
+/// Yₖ/(wₖ·2^dy) + 8H)` ([`Frame::homogeneous`]), so the doubled area is
+/// `D/(w₀w₁w₂·2^(dx + dy))` with `D` the determinant of the rows `(Xₖ,
+/// Yₖ, wₖ)` (the translation drops out), of `D`'s sign with every `w > 0`.
+/// `|X|, |Y| < 2⁴⁶` and `|w| ≤ 2³¹`: each minor with `w` is below 2⁷⁸,
+/// each term below 2¹²⁴, `D` below 2¹²⁶, in `i128`.
 #[inline(never)]
 fn turned_over<S: Specular, V: Viewer, L: LightSet>(
     c: &Corners,
     f: &Frame<'_, '_, S, V, L>,
     a: i64,
 ) -> bool {
-    clip_orientation(&[c.clip(f, 0), c.clip(f, 1), c.clip(f, 2)]) != a.signum()
+    let h = [0, 1, 2].map(|k| f.homogeneous(c.vertex(k)));
+    let [x, y, w] = [0, 1, 2].map(|i| h.map(|p| p[i] as i128));
+    det3(x, y, w).signum() as i64 != a.signum()
 }
 
 /// `TargetTooLarge` for a side above [`MAX_TARGET_SIDE`].
@@ -903,6 +922,9 @@ pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
     /// bytes, in the struct the triangle loop reads.
     pub(crate) modelview: &'a Mat4,
     pub(crate) proj: ProjectionCoeffs,
+    /// The projection's `x`, `y` rows folded with the viewport and
+    /// `modelview`.
+    pub(crate) fold: Fold,
     pub(crate) w: i64,
     pub(crate) h: i64,
     /// The viewport: projection, window mapping and the attribute planes'

@@ -679,17 +679,22 @@ impl Mat4 {
     /// assert_eq!(m.transform_quantised([16384, -32768, 0]), m.transform_point(p));
     /// ```
     pub fn transform_quantised(&self, q: [i16; 3]) -> Vec3 {
-        const Q15: u32 = 15;
-        let row = |r: usize| {
-            let m = &self.m[r];
-            let acc = mul_i32_i16(m[0], q[0])
-                + mul_i32_i16(m[1], q[1])
-                + mul_i32_i16(m[2], q[2])
-                + ((m[3] as i64) << Q15);
-            let r = ((acc >> (Q15 - 1)) + 1) >> 1;
-            r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
-        };
+        let row = |r: usize| self.quantised_row(r, q);
         Vec3::from_bits(row(0), row(1), row(2))
+    }
+
+    /// Row `r` of [`Mat4::transform_quantised`] (raw `I8F24`): for the
+    /// vertex stage, which needs the depth row alone.
+    #[inline(always)]
+    pub(crate) fn quantised_row(&self, r: usize, q: [i16; 3]) -> i32 {
+        const Q15: u32 = 15;
+        let m = &self.m[r];
+        let acc = mul_i32_i16(m[0], q[0])
+            + mul_i32_i16(m[1], q[1])
+            + mul_i32_i16(m[2], q[2])
+            + ((m[3] as i64) << Q15);
+        let r = ((acc >> (Q15 - 1)) + 1) >> 1;
+        r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
     }
 
     /// Applies the 3 × 3 linear part to a direction (w = 0), returning raw

@@ -18,15 +18,16 @@
 //! and its [`Corners`], so cull, box and facing are decided on the same
 //! values everywhere.
 
+use crate::camera::ProjectionCoeffs;
 use crate::color::Shade;
 use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::normalize::normalize;
-use crate::num::division::{floor_div, floor_div_all};
-use crate::num::widening::mul_by_narrow;
-use crate::rasterizer::COORD_LIMIT;
+use crate::num::widening::{mul_by_narrow, mul_i32_i16};
+use crate::rasterizer::{Recip, COORD_LIMIT, QUOT_SAT};
 use crate::render::{DrawStats, Frame};
+use crate::vector::Mat4;
 use crate::vector::{Unit3, Vec3};
 
 /// A window position and depth attribute ([`Frame::window`]): `x`, `y` in
@@ -199,6 +200,12 @@ impl<'c> Corners<'c> {
         }
     }
 
+    /// The mesh vertex of corner `k`.
+    #[inline(always)]
+    pub(crate) fn vertex(&self, k: usize) -> usize {
+        self.vertex[k]
+    }
+
     /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
     #[inline(always)]
     pub(crate) fn inside(&self, k: usize) -> bool {
@@ -286,6 +293,87 @@ impl<'c> Corners<'c> {
     }
 }
 
+/// `⌊num/2^k + ½⌋` for any `k`, or ±[`QUOT_SAT`] where that is larger in
+/// magnitude. For `1 ≤ k ≤ 63` it is `⌊(⌊num/2^(k−1)⌋ + 1)/2⌋` (nested
+/// floors), the inner quotient first saturated (so the `+ 1` cannot
+/// overflow); for `k ≥ 64`, `|num/2^k| ≤ ½` rounds to 0.
+fn shift_round(num: i64, k: i32) -> i64 {
+    let q = match k {
+        64.. => return 0,
+        1..=63 => num >> (k - 1),
+        _ => num.saturating_mul(1 << (-k).min(62)),
+    };
+    let q = q.clamp(-2 * QUOT_SAT, 2 * QUOT_SAT);
+    if k >= 1 {
+        (q + 1) >> 1
+    } else {
+        q.clamp(-QUOT_SAT, QUOT_SAT)
+    }
+}
+
+/// The projection's `x` and `y` rows folded with the viewport and the
+/// model-view matrix (the mesh's box in it), once a draw: from a mesh's
+/// `i16` position `q`, `X = Σ g[c]·q[c] + t` is `8W·x_c·2^down` before
+/// the eye position's and `x_c`'s roundings (likewise `Y` for
+/// `−8H·y_c`), so the window position is `X/(w_c·2^down) + 8W`.
+///
+/// Exactly, with `M` the model-view rows in raw `I8F24` and `q` read as
+/// `Q.15`: `x_e·2¹⁵ = Σ M[c]·q[c] + M[3]·2¹⁵`, `x_c·2³⁹ = s_x·x_e·2¹⁵ +
+/// t_x·2³⁹`, so `G[c] = 8W·s_x·M[c]` (below `2²³·2³¹·2³¹ = 2⁸⁵`) and `T =
+/// 8W·(s_x·M[3]·2¹⁵ + t_x·2³⁹)` (below 2¹⁰¹), in `i128`. A row keeps them
+/// divided by `2^e`, rounded, with `e` the least that brings every
+/// `|g[c]|` to at most 2²⁸ and `|t|` to at most 2⁴⁴ (`down = 39 − e`):
+/// then `|X| ≤ 3·2²⁸·2¹⁵ + 2⁴⁴ < 2⁴⁶`, each product `i32 × i16`. The
+/// entries' roundings move `X` by at most `3·2¹⁴ + ½` against a
+/// magnitude of 2⁴⁴ or more where `t` set `e` (2⁻²⁹ of it), or 2²⁸·|q|
+/// where a `g` did: precision relative to the mesh's extent and
+/// position, whatever the world's size.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fold {
+    g: [[i32; 3]; 2],
+    t: [i64; 2],
+    /// Each row's `down`.
+    pub(crate) down: [i32; 2],
+}
+
+impl Fold {
+    /// The rows for a target of `w × h` pixels.
+    pub(crate) fn new(m: &Mat4, p: &ProjectionCoeffs, w: i64, h: i64) -> Fold {
+        let mut fold = Fold {
+            g: [[0; 3]; 2],
+            t: [0; 2],
+            down: [0; 2],
+        };
+        let rows = [(8 * w, p.sx, p.tx, 0), (-8 * h, p.sy, p.ty, 1)];
+        for (k, (scale, s, t, r)) in rows.into_iter().enumerate() {
+            let row = &m.m[r];
+            let g = [0, 1, 2].map(|c| scale as i128 * s as i128 * row[c] as i128);
+            let t = scale as i128 * (((s as i128 * row[3] as i128) << 15) + ((t as i128) << 39));
+            let bits = |v: u128| 128 - v.leading_zeros() as i32;
+            let gmax = g.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+            let e = (bits(gmax) - 28).max(bits(t.unsigned_abs()) - 44);
+            let scaled = |v: i128| {
+                if e > 0 {
+                    (v + (1 << (e - 1))) >> e
+                } else {
+                    v << -e
+                }
+            };
+            fold.g[k] = g.map(|v| scaled(v) as i32);
+            fold.t[k] = scaled(t) as i64;
+            fold.down[k] = 39 - e;
+        }
+        fold
+    }
+
+    /// `X` (`k = 0`) or `Y` (`k = 1`) of position `q`.
+    #[inline(always)]
+    pub(crate) fn row(&self, k: usize, q: [i16; 3]) -> i64 {
+        let g = &self.g[k];
+        mul_i32_i16(g[0], q[0]) + mul_i32_i16(g[1], q[1]) + mul_i32_i16(g[2], q[2]) + self.t[k]
+    }
+}
+
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Projects every vertex of the mesh into `cache` (one per vertex), the
     /// vertex's work inlined in one loop instead of a call per vertex.
@@ -296,16 +384,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
     }
 
-    /// Transforms, projects and snaps mesh vertex `i` into `c` (no colour
-    /// yet).
+    /// Projects and snaps mesh vertex `i` into `c` (no colour yet).
     #[inline(always)]
     pub(crate) fn project_into(&self, c: &mut CachedVertex, i: usize) {
-        let clip = self.proj.clip(self.eye_inline(i));
         *c = CachedVertex::new();
-        if clip[2] + clip[3] < 0 {
+        let Some(w) = self.vertex_window(i) else {
             return;
-        }
-        let w = self.window_inline(&clip);
+        };
         c.z = w[2];
         match (i16::try_from(w[0]), i16::try_from(w[1])) {
             (Ok(x), Ok(y)) => {
@@ -321,21 +406,40 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// (rare, out of line).
     #[inline(never)]
     pub(crate) fn far_window(&self, i: usize) -> Win {
-        self.window_inline(&self.proj.clip(self.eye(i)))
+        self.vertex_window(i).unwrap_or([0; 3])
+    }
+
+    /// Window position and depth attribute of mesh vertex `i`, or `None`
+    /// behind the near plane (`z_c + w_c < 0`).
+    ///
+    /// Its eye-space depth and `z_c`, `w_c` are computed as
+    /// [`ProjectionCoeffs::clip`] computes them, so the near test agrees
+    /// with the clipping's; `x` and `y` come from the mesh position through
+    /// the folded rows ([`Fold`]), divided by `w_c` with one reciprocal.
+    #[inline(always)]
+    fn vertex_window(&self, i: usize) -> Option<Win> {
+        let q = self.mesh.positions[i];
+        let [z, w] = self.proj.depth_clip(self.modelview.quantised_row(2, q));
+        if z + w < 0 {
+            return None;
+        }
+        let f = &self.fold;
+        Some(self.window_of((f.row(0, q), f.down[0]), (f.row(1, q), f.down[1]), z, w))
+    }
+
+    /// The folded rows and `w_c` of mesh vertex `i` (in front of the near
+    /// plane): its window position is `(X/(w·2^dx) + 8W, Y/(w·2^dy) + 8H)`
+    /// before rounding. [`Fold`] bounds `|X|, |Y|` by 2⁴⁶; `0 < w ≤ 2³¹`
+    /// for a vertex with a window position.
+    pub(crate) fn homogeneous(&self, i: usize) -> [i64; 3] {
+        let q = self.mesh.positions[i];
+        let [_, w] = self.proj.depth_clip(self.modelview.quantised_row(2, q));
+        [self.fold.row(0, q), self.fold.row(1, q), w]
     }
 
     /// Eye-space position of mesh vertex `i`.
     #[inline]
     pub(crate) fn eye(&self, i: usize) -> Vec3 {
-        self.eye_inline(i)
-    }
-
-    /// [`Frame::eye`], always inlined: for the loops over every vertex.
-    /// The mesh's `i16` position goes straight into the matrix that has
-    /// the box folded in (no sum can overflow:
-    /// [`Mat4::transform_quantised`](crate::vector::Mat4::transform_quantised)).
-    #[inline(always)]
-    pub(crate) fn eye_inline(&self, i: usize) -> Vec3 {
         self.modelview.transform_quantised(self.mesh.positions[i])
     }
 
@@ -363,49 +467,60 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 
     /// Window position (1/16 pixel, clamped to ±2²⁸) and depth attribute of
-    /// a clip-space point in front of the near plane (SPEC.md 1, 5):
-    /// `X = ⌊x_w·16 + ½⌋`, `Z = ⌊z_w·65535·2⁸ + 2⁷⌋` (clamped to ±2³⁰).
+    /// a clip-space point in front of the near plane (SPEC.md 1, 5): a
+    /// corner that clipping made.
+    ///
+    /// `|x_c|, |y_c|, |z_c| < 2³⁸ + 2³¹` (a projection coefficient below
+    /// 2³¹ raw times an `I8F24` coordinate, shifted by 24, plus an offset
+    /// below 2³¹) and `8W, 8H ≤ 2²³`: `8W·x_c` is below 2⁶², within `i64`.
+    #[inline(never)]
+    pub(crate) fn window(&self, c: &[i64; 4]) -> Win {
+        let x = mul_by_narrow(c[0], 8 * self.w);
+        let y = mul_by_narrow(-c[1], 8 * self.h);
+        self.window_of((x, 0), (y, 0), c[2], c[3])
+    }
+
+    /// The window position `(X/(w·2^dx) + 8W, Y/(w·2^dy) + 8H)` rounded to
+    /// 1/16 pixel (`dx`, `dy`: the [`Fold`]'s shifts, 0 for a corner that
+    /// clipping made) and the depth attribute `Z = ⌊z_c·K/w⌋ + 2²³`, `K =
+    /// 65535·2⁷ = 2²³ − 2⁷`, each quotient from one reciprocal of `w`
+    /// ([`Recip::div_scaled`]: within `½ + |q|·2⁻²⁹` of the exact `q`, so a
+    /// snapped coordinate within ±2²⁴ is within 1/16 of the rounding's
+    /// half-unit; beyond, it is clamped or far off screen).
     ///
     /// The depth attribute is scaled so that `Z >> 8` is SPEC.md 5's
     /// quantised depth `d = ⌊z_w·65535 + ½⌋`: with `z_w = (z_c/w + 1)/2`,
-    /// `z_w·65535·2⁸ + 2⁷ = z_c·K/w + 2²³` where `K = 65535·2⁷ = 2²³ − 2⁷`
-    /// (the offset `65535·2⁷ + 2⁷` is `2²³`), so `Z = ⌊z_c·K/w⌋ + 2²³`, and
-    /// `⌊⌊x⌋/2⁸⌋ = ⌊x/2⁸⌋` makes `Z >> 8 = ⌊z_w·65535 + ½⌋` exactly for the
-    /// clip coordinates given. The span loop takes `Z >> 8` per pixel as
-    /// before; only this per-vertex scale changed.
+    /// `z_w·65535·2⁸ + 2⁷ = z_c·K/w + 2²³` (the offset `65535·2⁷ + 2⁷` is
+    /// `2²³`), and `⌊⌊x⌋/2⁸⌋ = ⌊x/2⁸⌋`. The floor is the rounding of
+    /// `(2K·z_c − w)/(2w)`: `|2K·z_c| < 2²⁴·(2³⁸ + 2³¹)` and `w ≤ 2³¹`, so
+    /// the numerator is within `i64`.
     ///
-    /// `|x_c|, |z_c| < 2³⁸ + 2³¹` (a projection coefficient below 2³¹ raw
-    /// times an `I8F24` coordinate, shifted by 24, plus an offset below
-    /// 2³¹), `8W ≤ 2²³` and `2K < 2²⁴`: `|2·x_c·8W|`, `|z_c·2²⁴|` and
-    /// `|2·z_c·K|` are below `2⁶² + 2⁵⁵`; with `0 < w < 2³²`, each
-    /// numerator is within ±(2⁶² + 2⁵⁶), so it minus the divisor `2w`
-    /// (below 2³³) stays within `i64` ([`floor_div_all`]'s conditions).
+    /// Clamps: `x`, `y` to ±2²⁸ and `Z` to ±2³⁰ ([`Win`]); a quotient that
+    /// [`Recip::div_scaled`] saturates lands on them.
     #[inline(always)]
-    fn window_inline(&self, c: &[i64; 4]) -> Win {
-        let w = c[3];
+    fn window_of(&self, x: (i64, i32), y: (i64, i32), z: i64, w: i64) -> Win {
         if w <= 0 {
             return [0, 0, 0];
         }
         let (hw, hh) = (8 * self.w, 8 * self.h);
-        // x_w·16 = 8W·(x_c/w + 1); y_w·16 = 8H·(1 − y_c/w), each rounded
-        // (the `+ w` over `2w`); the depth z_c·K/w floored, 2K = 2²⁴ − 2⁸.
-        // The quotients are exact within ±2³¹, beyond which each clamp
-        // below decides alike (the offsets 8W, 8H and 2²³ are at most 2²³,
-        // the clamps at 2²⁸ and 2³⁰).
-        let n = [
-            mul_by_narrow(2 * c[0], hw) + w,
-            mul_by_narrow(-2 * c[1], hh) + w,
-            mul_by_narrow(c[2], (1 << 24) - (1 << 8)),
-        ];
-        let [x, y, z] = if crate::platform::SOFT_DIV64 {
-            floor_div_all(n, 2 * w)
-        } else {
-            // (Each division written out: as an array map, x86-64 took
-            // 4 to 36 instructions more per vertex, by scheduling.)
+        let z = mul_by_narrow(z, (1 << 24) - (1 << 8)) - w;
+        let [x, y, z] = if w & (w - 1) == 0 {
+            // A power of two (every `w` of an orthographic projection):
+            // exact quotients.
+            let k = w.trailing_zeros() as i32;
             [
-                floor_div(n[0], 2 * w),
-                floor_div(n[1], 2 * w),
-                floor_div(n[2], 2 * w),
+                shift_round(x.0, k + x.1),
+                shift_round(y.0, k + y.1),
+                shift_round(z, k + 1),
+            ]
+        } else {
+            // Kept positions are within 2¹⁶ of the viewport's centre,
+            // depths within 2²⁴ (a point between the near and far planes).
+            let r = Recip::new(w);
+            [
+                r.div_scaled(x.0, x.1, 16),
+                r.div_scaled(y.0, y.1, 16),
+                r.div_scaled(z, 1, 24),
             ]
         };
         [
@@ -413,12 +528,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
             (z + (1 << 23)).clamp(-(1 << 30), 1 << 30) as i32,
         ]
-    }
-
-    /// [`Frame::window_inline`], out of line: for the clipping paths.
-    #[inline(never)]
-    pub(crate) fn window(&self, c: &[i64; 4]) -> Win {
-        self.window_inline(c)
     }
 
     /// Lights `v` (mesh vertex `i`) for the facing `want` ([`B_FRONT`] or
@@ -434,5 +543,36 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             v.set_bits((bits & !COLOUR_MASK) | pack(s) | want);
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shift_round;
+    use crate::rasterizer::tests::xorshift;
+    use crate::rasterizer::QUOT_SAT;
+
+    /// `shift_round` is `⌊num/2^k + ½⌋` in `i128`, saturated: both signs,
+    /// every magnitude, ties, shifts either way and past 64.
+    #[test]
+    fn shift_round_is_the_rounded_quotient() {
+        let mut next = xorshift(0x8f1b_bcdc_ca62_c1d6);
+        let mut nums = vec![0i64, 1, -1, i64::MAX, i64::MIN + 1, 3 << 20, -(3 << 20)];
+        nums.extend(
+            (0..20_000).map(|_| (next() >> (next() % 64)) as i64 * [1, -1][(next() & 1) as usize]),
+        );
+        for num in nums {
+            for k in -70..=70 {
+                let want = if k >= 0 {
+                    let d = 1i128 << k.min(100);
+                    (2 * num as i128 + d).div_euclid(2 * d)
+                } else {
+                    let v = num as i128;
+                    v.checked_mul(1 << -k).unwrap_or(v.signum() * i128::MAX)
+                };
+                let want = want.clamp(-(QUOT_SAT as i128), QUOT_SAT as i128) as i64;
+                assert_eq!(shift_round(num, k), want, "{num} >> {k}");
+            }
+        }
     }
 }

@@ -1,27 +1,20 @@
 //! Exact integer division, cheap on every core.
 //!
-//! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk, the window
-//!   mapping).
+//! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk).
 //! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d` without a 64-bit
 //!   division, the mantissa of a reciprocal (a triangle's area, a vertex's
 //!   `w`).
-//! - [`floor_div_all`]: several numerators over one divisor (the window
-//!   mapping divides a vertex's x, y and z by the same `2w`).
 //!
 //! A 64-bit division is one instruction on a 64-bit core and a library call
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
-//! Cortex-M4 (which divides only 32-bit numbers in hardware), in the QEMU
-//! counts of S1, where the window mapping's three per vertex were 14 % of
-//! the M0's frame. Where [`platform::SOFT_DIV64`] holds (targets
-//! whose pointers are narrower than 64 bits), [`floor_div_all`]
-//! takes one reciprocal ([`recip63`]: two 32-bit divisions where the core
-//! has them, else a table, a Newton step and an exact remainder step) and,
-//! per numerator, a 32 × 32 → 64-bit
-//! product and an exact remainder fix-up; the set-up's area reciprocal
-//! takes [`recip63`] too. The values are the same on every target (unit
-//! tests hold each form to the plain division, [`recip63`] over its whole
-//! domain, which CI runs in release; CI runs the whole suite on the host
-//! with `--cfg fixshade_soft_div64`), so frames stay bit-exact.
+//! Cortex-M4 (which divides only 32-bit numbers in hardware). Where
+//! [`platform::SOFT_DIV64`] holds (targets whose pointers are narrower than
+//! 64 bits), a reciprocal takes [`recip63`]: two 32-bit divisions where the
+//! core has them, else a table, a Newton step and an exact remainder step.
+//! The values are the same on every target (unit tests hold each form to
+//! the plain division, [`recip63`] over its whole domain, which CI runs in
+//! release; CI runs the whole suite on the host with `--cfg
+//! fixshade_soft_div64`), so frames stay bit-exact.
 
 use core::ops::{Add, Div, Rem, Sub};
 
@@ -214,150 +207,9 @@ fn recip63_newton(d: u32) -> u64 {
     y as u64
 }
 
-/// `a · b` modulo 2⁶⁴ for `a, b < 2³³`, from one 32 × 32 → 64-bit product
-/// ([`mul_u32`]) and the top bits' shifted terms.
-#[inline(always)]
-fn times_u33(a: u64, b: u64) -> u64 {
-    let mut p = mul_u32(a as u32, b as u32);
-    if a >> 32 != 0 {
-        p = p.wrapping_add(b << 32);
-    }
-    if b >> 32 != 0 {
-        p = p.wrapping_add(a << 32);
-    }
-    p
-}
-
-/// `⌊a / 2^f⌋` for `f ≤ 32` where it is below 2³², in 32-bit shifts (a
-/// 64-bit shift by a variable amount is a library call on a Cortex-M0).
-#[inline(always)]
-fn shr_to_u32(a: u64, f: u32) -> u32 {
-    let (hi, lo) = ((a >> 32) as u32, a as u32);
-    match f {
-        0 => lo,
-        32.. => hi,
-        _ => hi << (32 - f) | lo >> f,
-    }
-}
-
-/// The largest quotient magnitude [`floor_div_all`] computes exactly.
-pub(crate) const QUOTIENT_LIMIT: i64 = 1 << 31;
-
-/// `⌊nᵢ / d⌋` for each `nᵢ` and `1 ≤ d < 2³³` with `nᵢ − d` within `i64`
-/// ([`floor_div`]'s condition), exact where it lies within
-/// ±[`QUOTIENT_LIMIT`] and otherwise at or beyond that limit on the same
-/// side (callers clamp to a narrower range). Where
-/// [`platform::SOFT_DIV64`] holds from one reciprocal ([`Divisor`]), else by [`floor_div`] each.
-#[inline]
-pub(crate) fn floor_div_all<const N: usize>(n: [i64; N], d: i64) -> [i64; N] {
-    if platform::SOFT_DIV64 {
-        let by = Divisor::new(d as u64);
-        n.map(|n| by.floor_sat(n))
-    } else {
-        n.map(|n| floor_div(n, d))
-    }
-}
-
-/// A divisor `1 ≤ d < 2³³` prepared for [`Divisor::floor_sat`]:
-/// `d ≈ hi·2^(f − 31)` with `hi ∈ [2³¹, 2³²)` (exact when `d < 2³²`) and
-/// `m = ⌊2⁶³/hi⌋` (capped to `u32::MAX`).
-#[derive(Clone, Copy, Debug)]
-struct Divisor {
-    d: u64,
-    m: u32,
-    /// The numerator shift, `f = bits(d) − 1 ∈ [0, 32]`.
-    f: u32,
-    /// `2³¹·d`: numerators from here on have quotients beyond the limit.
-    lim: u64,
-}
-
-impl Divisor {
-    #[inline]
-    fn new(d: u64) -> Divisor {
-        debug_assert!((1..1 << 33).contains(&d));
-        let f = if d >> 32 != 0 {
-            32
-        } else {
-            31 - (d as u32).leading_zeros()
-        };
-        // hi = d·2^(31 − f), truncated when f = 32: in [2^31, 2^32).
-        let hi = if f == 32 {
-            (d >> 1) as u32
-        } else {
-            (d as u32) << (31 - f)
-        };
-        Divisor {
-            d,
-            m: recip63(hi).min(u32::MAX as u64) as u32,
-            f,
-            lim: d << 31,
-        }
-    }
-
-    /// `⌊n/d⌋` clamped to ±[`QUOTIENT_LIMIT`], for `|n| < 2⁶³`.
-    ///
-    /// For `a = |n| < 2³¹·d`, `u = ⌊a/d⌋ < 2³¹`. With `t = ⌊a/2^f⌋ < 2³²`
-    /// (`2^f ≤ d`, so dropping `a`'s low bits moves the quotient by less
-    /// than one), `u₀ = ⌊t·m/2³²⌋` (or one less) approximates
-    /// `a/(hi·2^(f−31))`, whose factors are each within a relative 2⁻³¹ of
-    /// the exact ones: `u − 3 ≤ u₀ ≤ u + 1`. The remainder `r = a − u₀·d`,
-    /// in `[−d, 4d)`, then fixes `u₀` to `u` (in 32 bits when `d < 2²⁹`,
-    /// where `r` fits `i32` and is exact modulo 2³²; else modulo 2⁶⁴), and
-    /// a negative `n` takes `−⌈a/d⌉`.
-    #[inline]
-    fn floor_sat(self, n: i64) -> i64 {
-        let a = n.unsigned_abs();
-        if a >= self.lim {
-            return if n < 0 {
-                -QUOTIENT_LIMIT
-            } else {
-                QUOTIENT_LIMIT
-            };
-        }
-        let u0 = mul_hi_approx(shr_to_u32(a, self.f), self.m);
-        let (u, rest) = if self.d < 1 << 29 {
-            let d = self.d as i32;
-            let mut u = u0;
-            let mut r = (a as u32).wrapping_sub(u.wrapping_mul(d as u32)) as i32;
-            while r < 0 {
-                u -= 1;
-                r += d;
-            }
-            while r >= d {
-                u += 1;
-                r -= d;
-            }
-            (u, r != 0)
-        } else {
-            let d = self.d as i64;
-            let mut u = u0;
-            let mut r = a.wrapping_sub(times_u33(u as u64, self.d)) as i64;
-            while r < 0 {
-                u -= 1;
-                r += d;
-            }
-            while r >= d {
-                u += 1;
-                r -= d;
-            }
-            (u, r != 0)
-        };
-        debug_assert!(u0 <= u + 1 && u <= u0 + 3, "{n} / {}: {u0} → {u}", self.d);
-        let u = u as i64;
-        match (n < 0, rest) {
-            (false, _) => u,
-            (true, false) => -u,
-            (true, true) => -u - 1,
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{
-        floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, Divisor,
-        QUOTIENT_LIMIT,
-    };
+    use super::{floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton};
     use crate::rasterizer::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
@@ -417,55 +269,6 @@ mod tests {
             let want = (1u64 << 63) / d as u64;
             assert_eq!(recip63_newton(d), want, "{d}");
             assert_eq!(recip63_by_digits(d), want, "{d}");
-        }
-    }
-
-    /// [`Divisor::floor_sat`] is the clamped floor: divisors from 1 to
-    /// 2³³ − 1 (every bit length, powers of two and their neighbours),
-    /// numerators of both signs around exact multiples, at the quotient
-    /// limit and at the ends of `i64`.
-    #[test]
-    fn reciprocal_floor_is_the_clamped_floor() {
-        let mut next = xorshift(0x0dd0_c0ff_ee15_900d);
-        let mut ds: Vec<u64> = vec![1, 2, 3, (1 << 33) - 1, 1 << 32, (1 << 32) - 1];
-        for k in 1..33 {
-            ds.extend([1u64 << k, (1 << k) + 1, (1 << k) - 1]);
-        }
-        ds.extend((0..3000).map(|_| (next() >> (31 + next() % 33)).max(1)));
-        let check = |n: i64, d: u64| {
-            let want = n
-                .div_euclid(d as i64)
-                .clamp(-QUOTIENT_LIMIT, QUOTIENT_LIMIT);
-            assert_eq!(Divisor::new(d).floor_sat(n), want, "{n} / {d}");
-        };
-        for &d in &ds {
-            let di = d as i64;
-            for _ in 0..40 {
-                // Quotients of every magnitude up to past the limit.
-                let q = (next() >> (31 + next() % 33)) as i64;
-                let sign = if next() & 1 == 0 { 1 } else { -1 };
-                let base = (sign * q).saturating_mul(di);
-                for k in [-1, 0, 1, di - 1] {
-                    if let Some(n) = base.checked_add(k).filter(|n| *n > i64::MIN) {
-                        check(n, d);
-                    }
-                }
-            }
-            for q in [QUOTIENT_LIMIT - 1, QUOTIENT_LIMIT, QUOTIENT_LIMIT + 1] {
-                for s in [-1, 1] {
-                    let Some(base) = (s * q).checked_mul(di) else {
-                        continue;
-                    };
-                    for k in [-1, 0, 1] {
-                        if let Some(n) = base.checked_add(k).filter(|n| *n > i64::MIN) {
-                            check(n, d);
-                        }
-                    }
-                }
-            }
-            for n in [0, 1, -1, i64::MAX, -i64::MAX] {
-                check(n, d);
-            }
         }
     }
 }
