@@ -320,10 +320,12 @@ impl Recip {
             32 - crate::platform::leading_zeros(a as u32)
         };
         // a ≈ a32 · 2^e with a32 ∈ [2^31, 2^32).
+        // (A 64-bit shift by a variable amount is a library call on a
+        // Cortex-M0: the common case, `a < 2³²`, shifts the low word.)
         let (a32, e) = if bits > 32 {
             (a >> (bits - 32), (bits - 32) as i32)
         } else {
-            (a << (32 - bits), -((32 - bits) as i32))
+            (((a as u32) << (32 - bits)) as u64, -((32 - bits) as i32))
         };
         // 1/a ≈ (2^63 / a32) · 2^−(63 + e); 2^63/a32 ∈ (2^31, 2^32].
         Recip {
