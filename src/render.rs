@@ -820,7 +820,7 @@ fn win_area(win: &[Win], corners: [usize; 3]) -> i64 {
 /// p/8 + 3` (above `(1 + 2ε)·p + 2·(1 + 2ε)²`), `A` is not zero and has
 /// `a`'s sign. A sliver of longest side `L` and height `h` (its other two
 /// sides summing to about `L`) has `2|a| = 2Lh` and `p` at most about
-/// `2√2·L`: only slivers less than about 1/6 pixel thick, and triangles a
+/// `2√2·L`: only slivers less than about 1/10 pixel thick, and triangles a
 /// few 1/16 pixel across, ask for the exact sign.
 ///
 /// Ranges: coordinates within ±2²⁸ (`window` clamps them), so each
