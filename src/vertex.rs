@@ -1,11 +1,12 @@
 //! The vertex stage: each mesh vertex's window position, depth and lit
 //! colour, in a 16-byte [`CachedVertex`] per vertex.
 //!
-//! A vertex is transformed (the mesh's `i16` position through the
-//! model-view matrix with the mesh's box folded in, to `I8F24` eye space),
-//! projected to clip space and snapped to 1/16 pixel once a frame
-//! ([`Frame::project_all`]); it is lit the first time a visible triangle
-//! needs its colour. Everything else a triangle may need of a vertex (its
+//! Once a frame ([`Frame::project_all`]) a vertex's window position comes
+//! from its `i16` mesh position through the projection's rows folded with
+//! the viewport, the model-view matrix and the mesh's box ([`Fold`]),
+//! divided by its `w_c` with one reciprocal, and snapped to 1/16 pixel;
+//! its eye-space depth decides the near test as the clipping does. It is
+//! lit the first time a visible triangle needs its colour. Everything else a triangle may need of a vertex (its
 //! eye position and normal for flat and Phong shading and for lighting,
 //! its clip coordinates where a triangle crosses the near plane or the
 //! guard band, its window position when a coordinate lies outside
