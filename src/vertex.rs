@@ -420,7 +420,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     #[inline(always)]
     fn vertex_window(&self, i: usize) -> Option<Win> {
         let q = self.mesh.positions[i];
-        let [z, w] = self.proj.depth_clip(self.modelview.quantised_row(2, q));
+        let [z, w] = self.depth_clip(q);
         if z + w < 0 {
             return None;
         }
@@ -434,8 +434,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// for a vertex with a window position.
     pub(crate) fn homogeneous(&self, i: usize) -> [i64; 3] {
         let q = self.mesh.positions[i];
-        let [_, w] = self.proj.depth_clip(self.modelview.quantised_row(2, q));
+        let [_, w] = self.depth_clip(q);
         [self.fold.row(0, q), self.fold.row(1, q), w]
+    }
+
+    /// `[z_c, w_c]` of mesh position `q`: its eye-space depth row, then
+    /// [`ProjectionCoeffs::depth_clip`] (the clip coordinates' own).
+    #[inline(always)]
+    fn depth_clip(&self, q: [i16; 3]) -> [i64; 2] {
+        self.proj.depth_clip(self.modelview.quantised_row(2, q))
     }
 
     /// Eye-space position of mesh vertex `i`.
