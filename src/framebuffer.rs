@@ -304,7 +304,7 @@ mod tests {
             };
             let size = area.size;
             let n = (size.width * size.height) as u64;
-            let count = if rnd() % 4 == 0 { rnd() % (n + 1) } else { n } as usize;
+            let count = if rnd().is_multiple_of(4) { rnd() % (n + 1) } else { n } as usize;
             let colours: Vec<u16> = (0..count).map(|_| rnd() as u16).collect();
             let (mut got, mut want) = ([0u16; 128], [0u16; 128]);
             let mut fb = Framebuffer::new(&mut got, w, h).unwrap();

@@ -1,5 +1,6 @@
 #![doc = include_str!("../README.md")]
-#![cfg_attr(not(feature = "std"), no_std)]
+// The unit tests use the standard library (its prelude, `Vec`, threads).
+#![cfg_attr(not(test), no_std)]
 #![warn(missing_docs)]
 
 pub mod band;
@@ -16,8 +17,6 @@ pub mod num;
 mod platform;
 pub mod rasterizer;
 pub mod render;
-#[cfg(feature = "reference")]
-pub mod scene_kernel;
 mod setup;
 pub mod span;
 pub mod specular_table;
@@ -29,18 +28,3 @@ pub use illumination::Lighting;
 pub use material::Material;
 pub use specular_table::Exponent;
 pub use vector::{Mat4, Unit3, Vec3};
-
-#[cfg(feature = "reference")]
-pub mod error_measure;
-#[cfg(feature = "reference")]
-pub mod generate;
-#[cfg(feature = "reference")]
-pub mod mesh_convert;
-#[cfg(feature = "reference")]
-pub mod reference;
-#[cfg(feature = "reference")]
-pub mod scene_desc;
-#[cfg(feature = "scene-file")]
-pub mod scene_file;
-#[cfg(feature = "reference")]
-pub mod standard_scenes;

@@ -22,7 +22,7 @@
 //! # Precision
 //!
 //! Positions: the host converter
-//! ([`mesh_convert`](crate::mesh_convert), feature `reference`) takes the
+//! (`fixshade_host::mesh_convert`, the `fixshade-convert` command) takes the
 //! box from the mesh's extent `E` on each axis, `scale ≤ (E + 2⁻²⁴) ·
 //! 2¹⁵/65535 + 2⁻²⁴`, and rounds each coordinate to the nearest step:
 //! the error is at most half a step, `(E + 2⁻²⁴)/131070 + 2⁻⁴⁰`, which is
@@ -633,7 +633,7 @@ impl<'a> Mesh<'a> {
         if len as u64 > needed {
             return Err(MeshError::TrailingBytes { needed, len });
         }
-        if bytes.as_ptr() as usize % 2 != 0 {
+        if !(bytes.as_ptr() as usize).is_multiple_of(2) {
             return Err(MeshError::Misaligned);
         }
         if !platform::little_endian() {

@@ -9,7 +9,7 @@ use std::{env, fs};
 #[allow(dead_code)]
 mod codegen;
 
-use fixshade::scene_desc::LightDesc;
+use fixshade_host::scene_desc::LightDesc;
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("OUT_DIR"));
@@ -20,7 +20,7 @@ fn main() {
 
     // S1's scene on a square display, a coarser sphere (flat facets show
     // the rotation), a second, coloured light.
-    let mut d = fixshade::standard_scenes::sphere_scene(240, 240, 24, 12);
+    let mut d = fixshade_host::standard_scenes::sphere_scene(240, 240, 24, 12);
     d.lights.push(LightDesc::Directional {
         direction: [-1.0, -0.3, 0.6],
         diffuse: [0.1, 0.2, 0.5],

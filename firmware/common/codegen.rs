@@ -1,9 +1,9 @@
 //! Host side: writes a scene as Rust source in the kernel's formats, for
 //! firmware that cannot run the `std` scene code.
 //!
-//! Every value is converted exactly as `fixshade::scene_kernel::KernelScene`
+//! Every value is converted exactly as `fixshade_host::scene_kernel::KernelScene`
 //! converts it on the host (the same kernel functions on the same `f64`s;
-//! meshes by the host converter, `fixshade::mesh_convert`), and written as
+//! meshes by the host converter, `fixshade_host::mesh_convert`), and written as
 //! raw bits or mesh bytes, so the device renders from the very inputs the
 //! host renders from.
 
@@ -12,9 +12,9 @@ use std::fmt::Write;
 use fixshade::camera::Camera;
 use fixshade::color::{Rgb, Shade};
 use fixshade::light::{unit_from_f64, Attenuation, SpotCone};
-use fixshade::mesh_convert::MeshData;
+use fixshade_host::mesh_convert::MeshData;
 use fixshade::num::WidePoint;
-use fixshade::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
+use fixshade_host::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 use fixshade::{Exponent, Mat4, Unit3};
 
 /// A firmware build script's common start: puts the crate's `memory.x` on

@@ -3,8 +3,8 @@
 //! (`firmware/host`): the standard scenes S1 to S4 at 320 × 240 in their own
 //! shading mode, and each again in the two other shading modes.
 
-use fixshade::scene_desc::{SceneDesc, Shading};
-use fixshade::standard_scenes;
+use fixshade_host::scene_desc::{SceneDesc, Shading};
+use fixshade_host::standard_scenes;
 
 /// One frame the firmware renders.
 pub struct Variant {

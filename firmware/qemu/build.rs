@@ -138,8 +138,8 @@ pub const SPOT: SpotLight = {};
 }
 
 /// A point or spot light moved to `p` (its spot axis towards the origin).
-fn moved(l: &fixshade::scene_desc::LightDesc, p: [f64; 3]) -> fixshade::scene_desc::LightDesc {
-    use fixshade::scene_desc::LightDesc;
+fn moved(l: &fixshade_host::scene_desc::LightDesc, p: [f64; 3]) -> fixshade_host::scene_desc::LightDesc {
+    use fixshade_host::scene_desc::LightDesc;
     let mut l = l.clone();
     match &mut l {
         LightDesc::Point { position, .. } => *position = p,

@@ -28,12 +28,12 @@ use embedded_graphics_simulator::sdl2::Keycode;
 use embedded_graphics_simulator::{
     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
-use fixshade::error_measure::{compare, ErrorStats};
-use fixshade::reference;
+use fixshade_host::error_measure::{compare, ErrorStats};
+use fixshade_host::reference;
 use fixshade::render::CachedVertex;
-use fixshade::scene_desc::{LightDesc, SceneDesc, Shading, SpecularModel, Viewer};
-use fixshade::scene_file::load_scene;
-use fixshade::scene_kernel::KernelScene;
+use fixshade_host::scene_desc::{LightDesc, SceneDesc, Shading, SpecularModel, Viewer};
+use fixshade_host::scene_file::load_scene;
+use fixshade_host::scene_kernel::KernelScene;
 
 /// Spin speed, degrees per second.
 const SPIN_DEG_PER_S: f64 = 30.0;

@@ -15,7 +15,7 @@ use std::process::ExitCode;
 
 use fixshade::framebuffer::Framebuffer;
 use fixshade::render::CachedVertex;
-use fixshade::scene_kernel::KernelScene;
+use fixshade_host::scene_kernel::KernelScene;
 
 mod report;
 

@@ -1,7 +1,7 @@
 //! fixshade on an emulated Cortex-M: what the firmware binaries share.
 //!
 //! - [`scenes`]: the standard scenes in kernel formats, generated at build
-//!   time by `build.rs` from the host's `fixshade::standard_scenes`.
+//!   time by `build.rs` from the host's `fixshade_host::standard_scenes`.
 //! - [`count`]: the two marker functions between which the QEMU plugin
 //!   (`firmware/plugin/insn_count.c`) counts executed instructions.
 //! - [`stack`]: paint the stack, render, find the high-water mark.
