@@ -1,13 +1,14 @@
 //! Band rendering: a whole frame, depth test included, through a colour
 //! buffer (and a depth buffer) of a few rows.
 //!
-//! [`Renderer::draw_bands`] renders the frame in horizontal bands of `W × h`
-//! pixels, top to bottom. For each band it clears the caller's colour band
-//! to the background and the depth band to the far value, rasterizes the
-//! triangles that touch the band (the same pipeline as
-//! [`Renderer::draw`], with its rows limited to the band), and hands the
-//! finished band to the `DrawTarget` as one `fill_contiguous` over the
-//! band's rectangle: one address window per band on an SPI display.
+//! A draw into [`Bands`] ([`Shaded::draw`](crate::Shaded::draw)) renders the
+//! frame in horizontal bands of `W × h` pixels, top to bottom. For each
+//! band it clears the caller's colour band to the background and the depth
+//! band to the far value, rasterizes the triangles that touch the band (the
+//! same pipeline as a whole frame's, with its rows limited to the band),
+//! and hands the finished band to the `DrawTarget` as one `fill_contiguous`
+//! over the band's rectangle: one address window per band on an SPI
+//! display.
 //!
 //! # Identical pixels
 //! The viewport (projection, window mapping) and its tiles (the guard
@@ -17,7 +18,7 @@
 //! each row the same span as the whole-frame walk (`src/setup.rs`); the
 //! triangles of a band are drawn in mesh order, and each pixel is drawn by
 //! exactly one band: the frame is bit for bit the whole-frame render
-//! (`tests/bands.rs` checks it on the standard scenes).
+//! (`host/tests/suite/bands.rs` checks it on the standard scenes).
 //!
 //! # Vertex modes
 //! - [`Cached`]: the vertices are transformed and projected once per frame
@@ -61,7 +62,7 @@ use crate::mesh::Mesh;
 
 use crate::rasterizer::{area2, RasterVertex};
 use crate::render::{
-    check_bounds, CachedVertex, DrawStats, Frame, RenderError, Renderer, ShadingMode,
+    check_bounds, CachedVertex, DrawStats, Frame, Prepared, RenderError, ShadingKind, ShadingMode,
 };
 use crate::span::BandSink;
 use crate::vertex::Corners;
@@ -77,8 +78,9 @@ use crate::vertex::Corners;
 /// ```
 pub const CHUNKS: usize = 128;
 
-/// Where the band renderer's per-vertex work is kept: [`Cached`] or
-/// [`Recomputed`].
+/// Where a draw's per-vertex work is kept: [`Cached`]
+/// ([`Shaded::with_cache`](crate::Shaded::with_cache)) or [`Recomputed`]
+/// (the default).
 ///
 /// ```
 /// use fixshade::band::{Cached, Recomputed, VertexMode};
@@ -120,7 +122,8 @@ impl VertexMode for Cached<'_> {
 }
 
 /// No per-vertex storage: each triangle's vertices are transformed,
-/// projected and lit again in every band that draws it.
+/// projected and lit again for each triangle (and in every band) that
+/// draws them.
 ///
 /// ```
 /// use fixshade::band::{Recomputed, VertexMode};
@@ -159,6 +162,17 @@ pub trait BandDepth: DepthTest {
     fn start_band(&mut self, width: u32, y0: u32, rows: u32) -> bool;
 }
 
+impl<Z: BandDepth> BandDepth for &mut Z {
+    #[inline(always)]
+    fn capacity(&self) -> u64 {
+        (**self).capacity()
+    }
+    #[inline(always)]
+    fn start_band(&mut self, width: u32, y0: u32, rows: u32) -> bool {
+        (**self).start_band(width, y0, rows)
+    }
+}
+
 impl BandDepth for NoDepth {
     #[inline(always)]
     fn capacity(&self) -> u64 {
@@ -179,25 +193,69 @@ impl BandDepth for DepthBand<'_> {
     }
 }
 
-/// The caller's colour band: `height` rows of the target's width, raw
-/// RGB565, and the background each band is cleared to.
+/// A draw's output in bands: the display, the caller's colour band
+/// (`rows` rows of the display's width, raw RGB565), the background each
+/// band is cleared to, and which bands this worker draws.
 ///
 /// ```
-/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
 /// use fixshade::band::Bands;
-/// let mut colour = [0u16; 320 * 16];
-/// let bands = Bands { colour: &mut colour, height: 16, background: Rgb565::BLACK };
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// let mut colour = [0u16; 64 * 16];
+/// // Bands of 16 rows; this worker draws the 1st, 3rd, … of them.
+/// let bands = Bands::new(&mut display, &mut colour, 16).interleaved(0, 2);
 /// # let _ = bands;
 /// ```
 #[derive(Debug)]
-pub struct Bands<'b> {
-    /// At least `width × height` pixels (of the band actually used:
-    /// `height` is capped at the target's height).
-    pub colour: &'b mut [u16],
-    /// Rows per band, at least 1.
-    pub height: u32,
+pub struct Bands<'t, 'b, T> {
+    target: &'t mut T,
+    colour: &'b mut [u16],
+    height: u32,
+    background: Rgb565,
+    worker: u32,
+    workers: u32,
+}
+
+impl<'t, 'b, T> Bands<'t, 'b, T> {
+    /// Bands of `rows` rows into `target` through `colour`, which holds at
+    /// least `width × rows` pixels (`rows` capped at the target's height);
+    /// a black background; every band drawn.
+    pub fn new(target: &'t mut T, colour: &'b mut [u16], rows: u32) -> Self {
+        Bands {
+            target,
+            colour,
+            height: rows,
+            background: Rgb565::new(0, 0, 0),
+            worker: 0,
+            workers: 1,
+        }
+    }
+
     /// The colour of pixels no triangle covers.
-    pub background: Rgb565,
+    #[must_use]
+    pub fn with_background(self, background: Rgb565) -> Self {
+        Bands { background, ..self }
+    }
+
+    /// Draws only bands `worker`, `worker + workers`, `worker + 2·workers`,
+    /// … (counted from the top, from 0), so that `workers` workers (cores,
+    /// threads), each with its own colour band and vertex storage, split a
+    /// frame; together they send every band once, each exactly as one
+    /// worker drawing all of them would. `workers` 0 counts as 1; a
+    /// `worker` at or above `workers` draws nothing.
+    #[must_use]
+    pub fn interleaved(self, worker: u32, workers: u32) -> Self {
+        Bands {
+            worker,
+            workers: workers.max(1),
+            ..self
+        }
+    }
+
+    /// The display the bands go to.
+    pub fn target(&mut self) -> &mut T {
+        self.target
+    }
 }
 
 /// The rows `[lo, hi]` of a triangle's pixel centres (from its window
@@ -246,9 +304,9 @@ fn visible_rows<S: Specular, V: Viewer, L: LightSet>(
 
 /// Rows per band actually used (at most the viewport's height) and the
 /// checks of the caller's buffers.
-fn check_band<E, D: BandDepth, X: VertexMode>(
+fn check_band<E, T, D: BandDepth, X: VertexMode>(
     bb: Rectangle,
-    bands: &Bands,
+    bands: &Bands<T>,
     depth: &D,
     vertices: &mut X,
     n_vertices: usize,
@@ -269,72 +327,23 @@ fn check_band<E, D: BandDepth, X: VertexMode>(
     Ok(rows)
 }
 
-impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
-    /// Renders the whole frame into `target` band by band through the
-    /// caller's band buffers (see the [module docs](crate::band)): the
-    /// pixels are those that clearing the target to `bands.background`, the
-    /// depth buffer to the far value and calling [`Renderer::draw`] gives.
+impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
+    /// Renders the frame into `bands`' target band by band (see the
+    /// [module docs](crate::band)): the pixels are those that clearing the
+    /// target to the background, the depth buffer to the far value and
+    /// drawing the whole frame gives.
     ///
     /// `depth` is [`NoDepth`] or a [`DepthBand`] of at least `width × h`
     /// values; `vertices` is [`Recomputed`] or [`Cached`] with one
     /// [`CachedVertex`] per mesh vertex. Each band goes to the target as one
     /// `fill_contiguous` of `width × h` pixels (the last band may be
-    /// shorter). Buffers too small are errors
-    /// ([`RenderError::BandTooSmall`], [`RenderError::DepthTooSmall`],
-    /// [`RenderError::CacheTooSmall`]) and nothing is drawn; any band
-    /// height of at least 1 works. The counts are summed over the bands (a
-    /// triangle drawn in two bands counts twice in `drawn`).
-    ///
-    /// ```
-    /// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-    /// use fixshade::band::{Bands, Cached, Recomputed};
-    /// use fixshade::render::CachedVertex;
-    /// use fixshade::camera::Camera;
-    /// use fixshade::depth::DepthBand;
-    /// use fixshade::framebuffer::Framebuffer;
-    /// use fixshade::illumination::InfiniteViewer;
-    /// use fixshade::light::DirectionalLight;
-    /// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// use fixshade::render::{Gouraud, RenderError, RenderOptions, Renderer};
-    /// use fixshade::{Mat4, Material, Rgb};
-    ///
-    /// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
-    /// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::<_, InfiniteViewer, _>::new(
-    ///     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-    /// );
-    /// // The display: here a framebuffer; any DrawTarget<Color = Rgb565>.
-    /// let mut px = [0u16; 32 * 32];
-    /// let mut display = Framebuffer::new(&mut px, 32, 32).unwrap();
-    /// // A band of 32 × 4 pixels, colour and depth: 512 bytes.
-    /// let (mut colour, mut z) = ([0u16; 32 * 4], [0u16; 32 * 4]);
-    /// let mut bands = Bands { colour: &mut colour, height: 4, background: Rgb565::BLUE };
-    /// let mut cache = [CachedVertex::default(); 3];
-    /// renderer
-    ///     .draw_bands::<Gouraud, _, _, _>(&mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z), &mut Cached(&mut cache))
-    ///     .unwrap();
-    /// assert_eq!(display.pixel(16, 16), Some(Rgb565::new(25, 50, 25)));
-    /// assert_eq!(display.pixel(0, 0), Some(Rgb565::BLUE));
-    /// // No vertex storage at all:
-    /// renderer
-    ///     .draw_bands::<Gouraud, _, _, _>(&mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z), &mut Recomputed)
-    ///     .unwrap();
-    /// // A depth band too small for the band is an error.
-    /// let err = renderer.draw_bands::<Gouraud, _, _, _>(
-    ///     &mesh, &mut display, &mut bands, &mut DepthBand::new(&mut z[..100]), &mut Recomputed,
-    /// );
-    /// assert_eq!(err, Err(RenderError::DepthTooSmall));
-    /// ```
-    pub fn draw_bands<M, T, D, X>(
+    /// shorter). Buffers too small are errors and nothing is drawn. The
+    /// counts are summed over the bands (a triangle drawn in two bands
+    /// counts twice in `drawn`).
+    pub(crate) fn draw_bands<M, T, D, X>(
         &self,
         mesh: &Mesh,
-        target: &mut T,
-        bands: &mut Bands,
+        bands: &mut Bands<T>,
         depth: &mut D,
         vertices: &mut X,
     ) -> Result<DrawStats, RenderError<T::Error>>
@@ -345,7 +354,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         X: VertexMode,
     {
         mesh.validate().map_err(RenderError::Mesh)?;
-        let bb = target.bounding_box();
+        if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
+            return Err(RenderError::NoNormals);
+        }
+        let bb = bands.target.bounding_box();
         let size = bb.size;
         let n = mesh.positions.len();
         let h = check_band(bb, bands, depth, vertices, n)?;
@@ -371,7 +383,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             let rows = if X::CACHED {
                 visible_rows(&frame, &Corners::of(cache, idx), cull)
             } else {
-                let mut three = project3(&frame, idx);
+                let mut three = frame.project3(idx);
                 visible_rows(&frame, &Corners::of_three(&mut three, idx), cull)
             };
             if let Some((lo, hi)) = rows {
@@ -391,7 +403,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
             bounds: &bounds,
             visible: &visible,
         };
-        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, target, bands, depth, &mut stats)?;
+        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, bands, depth, &mut stats)?;
         Ok(stats)
     }
 }
@@ -416,8 +428,7 @@ impl Job<'_, '_> {
         &self,
         frame: &mut Frame<'_, '_, S, V, L>,
         cache: &mut [CachedVertex],
-        target: &mut T,
-        bands: &mut Bands,
+        bands: &mut Bands<T>,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), RenderError<T::Error>>
@@ -433,9 +444,16 @@ impl Job<'_, '_> {
         let bb = self.bb;
         let (w, height) = (bb.size.width, bb.size.height);
         let (indices, per) = (self.mesh.indices, self.runs.per);
-        let mut y0 = 0u32;
+        let (mut y0, mut band) = (0u32, 0u32);
         while y0 < height {
             let rows = self.h.min(height - y0);
+            // Another worker's band (`Bands::interleaved`).
+            let mine = band % bands.workers == bands.worker;
+            band = band.wrapping_add(1);
+            if !mine {
+                y0 += rows;
+                continue;
+            }
             let (b0, b1) = (y0 as i32, (y0 + rows - 1) as i32);
             frame.rows = (b0, b1);
             // w, rows ≤ 2^20 (check_size): below 2^40, in u64.
@@ -476,13 +494,14 @@ impl Job<'_, '_> {
                                 frame, cache, idx, &mut sink, depth, stats,
                             )
                         };
-                        res.map_err(lift)?;
+                        res.map_err(RenderError::lift)?;
                     }
                 }
                 Ok(())
             })?;
             let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
-            target
+            bands
+                .target
                 .fill_contiguous(
                     &area,
                     bands.colour[..npx]
@@ -508,19 +527,6 @@ impl Runs {
             per: triangles.div_ceil(CHUNKS).max(1),
         }
     }
-}
-
-/// Projects triangle `idx`'s vertices into a cache of three.
-#[inline(always)]
-fn project3<S: Specular, V: Viewer, L: LightSet>(
-    f: &Frame<'_, '_, S, V, L>,
-    idx: [usize; 3],
-) -> [CachedVertex; 3] {
-    let mut l = [CachedVertex::new(); 3];
-    for (c, &i) in l.iter_mut().zip(&idx) {
-        f.project_into(c, i);
-    }
-    l
 }
 
 /// Draws triangle `idx` in the current band from the frame's cache, after
@@ -573,7 +579,7 @@ where
     V: Viewer,
     L: LightSet,
 {
-    let mut three = project3(f, idx);
+    let mut three = f.project3(idx);
     let mut c = Corners::of_three(&mut three, idx);
     if c.inside(0) && c.inside(1) && c.inside(2) {
         let w = c.wins(f);
@@ -583,17 +589,4 @@ where
         }
     }
     f.triangle::<M, P, D>(&mut c, sink, depth, stats)
-}
-
-/// An error of the band sink (memory, which cannot fail) as the target's.
-fn lift<E>(e: RenderError<core::convert::Infallible>) -> RenderError<E> {
-    match e {
-        RenderError::Mesh(m) => RenderError::Mesh(m),
-        RenderError::Camera(c) => RenderError::Camera(c),
-        RenderError::CacheTooSmall => RenderError::CacheTooSmall,
-        RenderError::DepthTooSmall => RenderError::DepthTooSmall,
-        RenderError::BandTooSmall => RenderError::BandTooSmall,
-        RenderError::TargetTooLarge => RenderError::TargetTooLarge,
-        RenderError::Target(e) => match e {},
-    }
 }

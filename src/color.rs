@@ -13,7 +13,7 @@
 //! result's clamp at 1, so the clamp changes nothing visible for factors
 //! above 2⁻⁸ and is documented here as the kernel's one departure.
 
-use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixed::types::U16F16;
 
 use crate::vector::FormatError;
@@ -123,6 +123,33 @@ impl Rgb {
         Ok(Rgb {
             c: [chan(c[0])?, chan(c[1])?, chan(c[2])?],
         })
+    }
+
+    /// A colour from floats, for `const` data and literals: each channel
+    /// rounded to the nearest `2⁻¹⁶` (ties to even, as [`Rgb::from_f32`])
+    /// and clamped to [0, 256]; NaN is 0.
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// const ORANGE: Rgb = Rgb::clamped(1.0, 0.5, 0.2);
+    /// assert_eq!(Ok(ORANGE), Rgb::from_f32(1.0, 0.5, 0.2));
+    /// assert_eq!(Rgb::clamped(-1.0, f32::NAN, 1e9).to_bits(), [0, 0, 256 << 16]);
+    /// ```
+    pub const fn clamped(r: f32, g: f32, b: f32) -> Rgb {
+        Rgb {
+            c: [chan_clamped(r), chan_clamped(g), chan_clamped(b)],
+        }
+    }
+
+    /// The same value in all three channels, as [`Rgb::clamped`].
+    ///
+    /// ```
+    /// use fixshade::Rgb;
+    /// const DIM: Rgb = Rgb::grey(0.1);
+    /// assert_eq!(Ok(DIM), Rgb::grey_f32(0.1));
+    /// ```
+    pub const fn grey(v: f32) -> Rgb {
+        Rgb::clamped(v, v, v)
     }
 
     /// The same value in all three channels; see [`Rgb::from_f32`].
@@ -285,11 +312,94 @@ impl Shade {
     }
 }
 
+/// A channel of [`Rgb::clamped`]: `v · 2¹⁶` is exact in `f64` (an `f32`
+/// has 24 significant bits), rounded to the nearest, ties to even; the
+/// `as` casts saturate (NaN to 0).
+const fn chan_clamped(v: f32) -> u32 {
+    let x = v as f64 * 65536.0;
+    if x.is_nan() || x <= 0.0 {
+        return 0;
+    }
+    if x >= RGB_MAX as f64 {
+        return RGB_MAX;
+    }
+    // 0 < x < 2^24: the truncation and the fraction are exact.
+    let t = x as u32;
+    let frac = x - t as f64;
+    if frac > 0.5 || (frac == 0.5 && t & 1 == 1) {
+        t + 1
+    } else {
+        t
+    }
+}
+
+impl From<Rgb> for Rgb565 {
+    /// Clamped to 1 and quantised as SPEC.md 6 says (as [`Shade::to_rgb565`]).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb565::from(Rgb::clamped(2.0, 0.25, 0.0)), Rgb565::new(31, 16, 0));
+    /// ```
+    fn from(c: Rgb) -> Rgb565 {
+        Shade::from_bits(c.c[0], c.c[1], c.c[2]).to_rgb565()
+    }
+}
+
+impl From<Rgb> for Rgb888 {
+    /// Clamped to 1, `round(v · 255)` (halves up).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb888::from(Rgb::clamped(1.0, 0.5, 9.0)), Rgb888::new(255, 128, 255));
+    /// ```
+    fn from(c: Rgb) -> Rgb888 {
+        // v ≤ 2^16 after the clamp: v · 255 < 2^24.
+        let q = |v: u32| ((v.min(SHADE_ONE) * 255 + (1 << 15)) >> 16) as u8;
+        Rgb888::new(q(c.c[0]), q(c.c[1]), q(c.c[2]))
+    }
+}
+
+impl From<Rgb565> for Rgb {
+    /// Each channel's fraction of its maximum (`r/31`, `g/63`, `b/31`),
+    /// rounded to `2⁻¹⁶`: converting back gives the same `Rgb565`.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb::from(Rgb565::WHITE), Rgb::WHITE);
+    /// let c = Rgb565::new(3, 40, 17);
+    /// assert_eq!(Rgb565::from(Rgb::from(c)), c);
+    /// ```
+    fn from(c: Rgb565) -> Rgb {
+        let f = |v: u8, max: u32| (v as u32 * SHADE_ONE + max / 2) / max;
+        Rgb::from_bits(f(c.r(), 31), f(c.g(), 63), f(c.b(), 31))
+    }
+}
+
+impl From<Rgb888> for Rgb {
+    /// Each channel over 255, rounded to `2⁻¹⁶`: converting back gives the
+    /// same `Rgb888`.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    /// use fixshade::Rgb;
+    /// assert_eq!(Rgb::from(Rgb888::WHITE), Rgb::WHITE);
+    /// let c = Rgb888::new(1, 128, 254);
+    /// assert_eq!(Rgb888::from(Rgb::from(c)), c);
+    /// ```
+    fn from(c: Rgb888) -> Rgb {
+        let f = |v: u8| (v as u32 * SHADE_ONE + 127) / 255;
+        Rgb::from_bits(f(c.r()), f(c.g()), f(c.b()))
+    }
+}
+
 /// Packs 5-6-5 channel values into the raw `u16` of an RGB565 pixel.
 ///
 /// ```
 /// use fixshade::color::pack565;
-/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 /// use embedded_graphics::prelude::*;
 /// assert_eq!(pack565(31, 63, 31), 0xFFFF);
 /// assert_eq!(pack565(31, 0, 0), 0xF800);

@@ -19,7 +19,7 @@
 /// depth.row(1, 1, 2).fill(9);
 /// assert_eq!(depth.row(1, 2, 10).len(), 2); // cut at the right edge
 /// assert!(depth.row(3, 0, 1).is_empty()); // below the buffer
-/// assert_eq!(depth.as_slice()[4..8], [0, 9, 9, 0]);
+/// assert_eq!(depth.as_slice()[4..8], [u16::MAX, 9, 9, u16::MAX]); // new: all far
 /// ```
 pub trait DepthTest {
     /// Whether there is a test at all.
@@ -29,22 +29,19 @@ pub trait DepthTest {
     fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16];
 }
 
+impl<Z: DepthTest> DepthTest for &mut Z {
+    const ENABLED: bool = Z::ENABLED;
+    #[inline(always)]
+    fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16] {
+        (**self).row(y, x0, len)
+    }
+}
+
 /// No depth test: every pixel is drawn, later triangles over earlier ones.
 ///
 /// ```
 /// use fixshade::depth::{DepthTest, NoDepth};
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{emit, FlatShader, FramebufferSink, SpanDepth};
 /// assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
-/// let mut px = [0u16; 4];
-/// let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
-/// let near = SpanDepth { z: 0, dz: 0, inside: true };
-/// let far = SpanDepth { z: 1 << 24, dz: 0, inside: false };
-/// for (c, z) in [(1, near), (2, far)] {
-///     let sh = FlatShader { plain: c, shade: Default::default(), dither: false, x: 0, y: 0 };
-///     emit(&mut FramebufferSink { fb: &mut fb }, &mut NoDepth, 0, 0, 4, z, sh).unwrap();
-/// }
-/// assert_eq!(px, [2; 4]); // the later, farther span is drawn over the nearer
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct NoDepth;
@@ -92,11 +89,14 @@ pub struct DepthBuffer<'a> {
 }
 
 impl<'a> DepthBuffer<'a> {
-    /// Wraps `buf`, which must hold at least `width · height` values.
+    /// Wraps `buf`, which must hold at least `width · height` values, and
+    /// clears them to the far value: ready for a frame as made.
     ///
     /// ```
     /// use fixshade::depth::DepthBuffer;
     /// let mut storage = [0u16; 16];
+    /// let z = DepthBuffer::new(&mut storage, 4, 3).unwrap();
+    /// assert!(z.as_slice().iter().all(|&d| d == u16::MAX));
     /// assert!(DepthBuffer::new(&mut storage[..11], 4, 3).is_err());
     /// assert!(DepthBuffer::new(&mut storage[..12], 4, 3).is_ok());
     /// // Longer storage is fine; only the first width · height values are used.
@@ -109,15 +109,19 @@ impl<'a> DepthBuffer<'a> {
         if (buf.len() as u64) < need {
             return Err(DepthBufferTooSmall);
         }
-        Ok(DepthBuffer { buf, width, height })
+        let mut z = DepthBuffer { buf, width, height };
+        z.clear();
+        Ok(z)
     }
 
-    /// Sets every depth to the far value (65535).
+    /// Sets every depth to the far value (65535): before each frame.
     ///
     /// ```
-    /// use fixshade::depth::DepthBuffer;
+    /// use fixshade::depth::{DepthBuffer, DepthTest};
     /// let mut storage = [0u16; 4 * 3 + 2];
-    /// DepthBuffer::new(&mut storage, 4, 3).unwrap().clear();
+    /// let mut depth = DepthBuffer::new(&mut storage, 4, 3).unwrap();
+    /// depth.row(1, 0, 4).fill(7); // a frame's depths
+    /// depth.clear();
     /// assert!(storage[..12].iter().all(|&z| z == u16::MAX));
     /// assert_eq!(storage[12..], [0, 0]); // past width × height: untouched
     /// ```
@@ -169,8 +173,8 @@ impl DepthTest for DepthBuffer<'_> {
 
 /// A depth band: the depths of `rows` rows of a `width`-pixel-wide
 /// viewport starting at row `y0`, in storage the caller provides (at least
-/// `width × rows` values). The band renderer
-/// ([`Renderer::draw_bands`](crate::render::Renderer::draw_bands)) moves it
+/// `width × rows` values). A draw into [`Bands`](crate::band::Bands)
+/// with it ([`Shaded::with_depth`](crate::Shaded::with_depth)) moves it
 /// down the frame and clears it for each band.
 ///
 /// ```
@@ -270,5 +274,51 @@ impl DepthTest for DepthBand<'_> {
         let start = r as usize * self.width as usize + x0 as usize;
         let len = len.min(self.width - x0) as usize;
         &mut self.buf[start..start + len]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The example from the docs of `NoDepth`: a later, farther span is
+    /// drawn over a nearer one.
+    #[test]
+    fn no_depth_draws_later_over_earlier() {
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+        assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
+        let mut px = [0u16; 4];
+        let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
+        let near = SpanDepth {
+            z: 0,
+            dz: 0,
+            inside: true,
+        };
+        let far = SpanDepth {
+            z: 1 << 24,
+            dz: 0,
+            inside: false,
+        };
+        for (c, z) in [(1, near), (2, far)] {
+            let sh = FlatShader {
+                plain: c,
+                shade: Default::default(),
+                dither: false,
+                x: 0,
+                y: 0,
+            };
+            emit(
+                &mut FramebufferSink { fb: &mut fb },
+                &mut NoDepth,
+                0,
+                0,
+                4,
+                z,
+                sh,
+            )
+            .unwrap();
+        }
+        assert_eq!(px, [2; 4]); // the later, farther span is drawn over the nearer
     }
 }

@@ -1,6 +1,8 @@
-//! A plain RGB565 framebuffer that is an `embedded-graphics` `DrawTarget`,
-//! with fast `fill_contiguous` and `fill_solid`: the host's and the
-//! emulated firmware's target, and a model for a display driver's buffer.
+//! A plain RGB565 framebuffer, which the renderer writes in place (an
+//! output of [`Shaded::draw`](crate::Shaded::draw)) and which
+//! [`Framebuffer::canvas`] makes an `embedded-graphics` `DrawTarget`, with
+//! fast `fill_contiguous` and `fill_solid`: the host's and the emulated
+//! firmware's target, and a model for a display driver's buffer.
 
 use core::convert::Infallible;
 
@@ -36,7 +38,7 @@ impl core::fmt::Display for FramebufferTooSmall {
 /// use fixshade::framebuffer::Framebuffer;
 /// let mut px = [0u16; 8 * 2];
 /// let mut fb = Framebuffer::new(&mut px, 8, 2).unwrap();
-/// fb.clear(Rgb565::RED).unwrap();
+/// fb.clear(Rgb565::RED);
 /// assert_eq!(fb.pixel(7, 1), Some(Rgb565::RED));
 /// ```
 #[derive(Debug, PartialEq, Eq)]
@@ -72,7 +74,7 @@ impl<'a> Framebuffer<'a> {
     /// use fixshade::framebuffer::Framebuffer;
     /// let mut px = [0u16; 3 * 2 + 1];
     /// let mut fb = Framebuffer::new(&mut px, 3, 2).unwrap();
-    /// Pixel(Point::new(2, 1), Rgb565::WHITE).draw(&mut fb).unwrap();
+    /// Pixel(Point::new(2, 1), Rgb565::WHITE).draw(&mut fb.canvas()).unwrap();
     /// assert_eq!(fb.as_slice(), &[0, 0, 0, 0, 0, 0xFFFF]); // (2, 1) at 1 · 3 + 2
     /// ```
     pub fn as_slice(&self) -> &[u16] {
@@ -147,11 +149,84 @@ fn raw(c: Rgb565) -> u16 {
     RawU16::from(c).into_inner()
 }
 
-impl DrawTarget for Framebuffer<'_> {
+/// The framebuffer as an `embedded-graphics` `DrawTarget`
+/// ([`Framebuffer::canvas`]): text, primitives and images drawn over or
+/// under a rendered frame.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::{PrimitiveStyle, Rectangle}};
+/// use fixshade::framebuffer::Framebuffer;
+/// let mut px = [0u16; 8 * 4];
+/// let mut fb = Framebuffer::new(&mut px, 8, 4).unwrap();
+/// Rectangle::new(Point::new(2, 1), Size::new(3, 2))
+///     .into_styled(PrimitiveStyle::with_fill(Rgb565::GREEN))
+///     .draw(&mut fb.canvas())
+///     .unwrap();
+/// assert_eq!(fb.pixel(4, 2), Some(Rgb565::GREEN));
+/// assert_eq!(fb.pixel(5, 2), Some(Rgb565::BLACK));
+/// ```
+#[derive(Debug)]
+pub struct Canvas<'f, 'a>(&'f mut Framebuffer<'a>);
+
+impl OriginDimensions for Canvas<'_, '_> {
+    fn size(&self) -> Size {
+        self.0.size()
+    }
+}
+
+impl DrawTarget for Canvas<'_, '_> {
     type Color = Rgb565;
     type Error = Infallible;
 
     fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<Rgb565>>,
+    {
+        self.0.put_iter(pixels);
+        Ok(())
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Rgb565>,
+    {
+        self.0.put_contiguous(area, colors);
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Rgb565) -> Result<(), Infallible> {
+        self.0.put_solid(area, color);
+        Ok(())
+    }
+
+    fn clear(&mut self, color: Rgb565) -> Result<(), Infallible> {
+        self.0.clear(color);
+        Ok(())
+    }
+}
+
+impl<'a> Framebuffer<'a> {
+    /// The framebuffer as a `DrawTarget`, for drawing other things into it.
+    pub fn canvas(&mut self) -> Canvas<'_, 'a> {
+        Canvas(self)
+    }
+
+    /// Fills every pixel with `color`.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use fixshade::framebuffer::Framebuffer;
+    /// let mut px = [0u16; 6];
+    /// let mut fb = Framebuffer::new(&mut px, 3, 2).unwrap();
+    /// fb.clear(Rgb565::BLUE);
+    /// assert_eq!(fb.pixel(2, 1), Some(Rgb565::BLUE));
+    /// ```
+    pub fn clear(&mut self, color: Rgb565) {
+        let n = (self.width as usize) * (self.height as usize);
+        self.buf[..n].fill(raw(color));
+    }
+
+    fn put_iter<I>(&mut self, pixels: I)
     where
         I: IntoIterator<Item = Pixel<Rgb565>>,
     {
@@ -160,10 +235,9 @@ impl DrawTarget for Framebuffer<'_> {
                 self.buf[p.y as usize * self.width as usize + p.x as usize] = raw(c);
             }
         }
-        Ok(())
     }
 
-    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    fn put_contiguous<I>(&mut self, area: &Rectangle, colors: I)
     where
         I: IntoIterator<Item = Rgb565>,
     {
@@ -188,7 +262,7 @@ impl DrawTarget for Framebuffer<'_> {
                     for (d, c) in run.iter_mut().zip(it) {
                         *d = raw(c);
                     }
-                    return Ok(());
+                    return;
                 }
                 for y in y0..y0 + h {
                     let row = &mut self.buf[y * width + x0..][..w];
@@ -196,7 +270,6 @@ impl DrawTarget for Framebuffer<'_> {
                         *d = raw(c);
                     }
                 }
-                Ok(())
             }
             Some((x0, y0, w, h)) => {
                 // Partly inside: the colours run row-major over the whole
@@ -218,33 +291,25 @@ impl DrawTarget for Framebuffer<'_> {
                     for d in out.iter_mut() {
                         match inside.next() {
                             Some(c) => *d = raw(c),
-                            None => return Ok(()),
+                            None => return,
                         }
                     }
                     if skip + w + inside.count() < full {
                         break;
                     }
                 }
-                Ok(())
             }
-            None => Ok(()),
+            None => {}
         }
     }
 
-    fn fill_solid(&mut self, area: &Rectangle, color: Rgb565) -> Result<(), Infallible> {
+    fn put_solid(&mut self, area: &Rectangle, color: Rgb565) {
         if let Some((x0, y0, w, h)) = self.clip(area) {
             let v = raw(color);
             for y in y0..y0 + h {
                 self.buf[y * self.width as usize + x0..][..w].fill(v);
             }
         }
-        Ok(())
-    }
-
-    fn clear(&mut self, color: Rgb565) -> Result<(), Infallible> {
-        let n = (self.width as usize) * (self.height as usize);
-        self.buf[..n].fill(raw(color));
-        Ok(())
     }
 }
 
@@ -304,17 +369,23 @@ mod tests {
             };
             let size = area.size;
             let n = (size.width * size.height) as u64;
-            let count = if rnd().is_multiple_of(4) { rnd() % (n + 1) } else { n } as usize;
+            let count = if rnd().is_multiple_of(4) {
+                rnd() % (n + 1)
+            } else {
+                n
+            } as usize;
             let colours: Vec<u16> = (0..count).map(|_| rnd() as u16).collect();
             let (mut got, mut want) = ([0u16; 128], [0u16; 128]);
             let mut fb = Framebuffer::new(&mut got, w, h).unwrap();
-            fb.fill_contiguous(&area, colours.iter().map(|&c| Rgb565::from(RawU16::new(c))))
+            fb.canvas()
+                .fill_contiguous(&area, colours.iter().map(|&c| Rgb565::from(RawU16::new(c))))
                 .unwrap();
             model(&mut want, w as i64, h as i64, &area, &colours);
             assert_eq!(got, want, "{area:?}, {count} colours");
             // fill_solid: the clipped part, one colour.
             let mut fb = Framebuffer::new(&mut got, w, h).unwrap();
-            fb.fill_solid(&area, Rgb565::from(RawU16::new(0xABCD)))
+            fb.canvas()
+                .fill_solid(&area, Rgb565::from(RawU16::new(0xABCD)))
                 .unwrap();
             let all = vec![0xABCD; n as usize];
             model(&mut want, w as i64, h as i64, &area, &all);

@@ -173,7 +173,7 @@ impl Gain {
 /// ```
 /// use fixshade::illumination::{Gain, Gains};
 /// use fixshade::Rgb;
-/// let g = Gains::new(Rgb::WHITE, Rgb::WHITE, Rgb::grey_f32(0.5).unwrap(), Rgb::BLACK);
+/// let g = Gains::new(Rgb::WHITE, Rgb::WHITE, Rgb::grey(0.5), Rgb::BLACK);
 /// assert_eq!(g.diffuse, [Gain::of_product(1 << 16, 1 << 15); 3]);
 /// assert_eq!(g.specular, [Gain::default(); 3]); // no specular colour
 /// ```
@@ -192,9 +192,9 @@ impl Gains {
     /// ```
     /// use fixshade::illumination::{Gains, FACTOR_ONE};
     /// use fixshade::Rgb;
-    /// let id = Rgb::from_f32(2.0, 1.0, 0.0).unwrap();
-    /// let kd = Rgb::from_f32(0.25, 0.5, 1.0).unwrap();
-    /// let g = Gains::new(id, Rgb::WHITE, kd, Rgb::grey_f32(0.5).unwrap());
+    /// let id = Rgb::clamped(2.0, 1.0, 0.0);
+    /// let kd = Rgb::clamped(0.25, 0.5, 1.0);
+    /// let g = Gains::new(id, Rgb::WHITE, kd, Rgb::grey(0.5));
     /// // Per channel Id·Kd = 0.5, 0.5, 0, and Is·Ks = 0.5, as Q.16 for a factor of 1.
     /// assert_eq!(g.diffuse.map(|d| d.apply(FACTOR_ONE)), [32768, 32768, 0]);
     /// assert_eq!(g.specular.map(|s| s.apply(FACTOR_ONE)), [32768; 3]);
@@ -430,11 +430,11 @@ pub fn view_dir<V: Viewer>(p: Vec3) -> Unit3 {
 /// use fixshade::light::DirectionalLight;
 ///
 /// let material = Material::new()
-///     .with_ambient(Rgb::from_f32(1.0, 0.5, 0.2).unwrap())
-///     .with_diffuse(Rgb::from_f32(1.0, 0.5, 0.2).unwrap());
+///     .with_ambient(Rgb::clamped(1.0, 0.5, 0.2))
+///     .with_diffuse(Rgb::clamped(1.0, 0.5, 0.2));
 /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
 /// let lighting: Lighting<_, InfiniteViewer, _> =
-///     Lighting::new(&material, Rgb::grey_f32(0.1).unwrap(), &sun, &Mat4::IDENTITY);
+///     Lighting::new(&material, Rgb::grey(0.1), &sun, &Mat4::IDENTITY);
 /// // A surface facing the light: ambient 0.1·Ka + Kd.
 /// let c = lighting.shade(Vec3::ZERO, Unit3::Z).to_bits();
 /// assert!((c[0] as i64 - 65536).abs() <= 2);            // 0.1 + 1.0, clamped to 1
@@ -462,7 +462,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
     /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, none, &sun, &Mat4::IDENTITY);
     /// assert!(lit.shade(Vec3::ZERO, Unit3::Z).to_bits()[0] > 52000); // Kd = 0.8
     /// // A view turned half-way round about x puts the light behind the surface.
-    /// let turned = Mat4::rotation(0, core::f32::consts::PI);
+    /// let turned = Mat4::rotation_x(core::f32::consts::PI);
     /// let dark: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, none, &sun, &turned);
     /// assert_eq!(dark.shade(Vec3::ZERO, Unit3::Z).to_bits(), [0; 3]);
     /// ```
@@ -499,9 +499,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
     /// use fixshade::light::DirectionalLight;
     /// use fixshade::{Lighting, Mat4, Material, Rgb, Unit3, Vec3};
     /// let m = Material::new();
-    /// let four = Rgb::grey_f32(4.0).unwrap();
+    /// let four = Rgb::grey(4.0);
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap().with_diffuse(four);
-    /// let a = Rgb::grey_f32(0.5).unwrap();
+    /// let a = Rgb::grey(0.5);
     /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, a, &sun, &Mat4::IDENTITY);
     /// assert_eq!(lit.shade(Vec3::ZERO, Unit3::Z).to_bits(), [1 << 16; 3]); // 0.1 + 3.2, clamped
     /// assert_eq!(lit.shade(Vec3::ZERO, Unit3::ZERO), lit.ambient()); // zero normal
@@ -535,14 +535,96 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
     /// use fixshade::illumination::InfiniteViewer;
     /// use fixshade::light::DirectionalLight;
     /// use fixshade::{Lighting, Mat4, Material, Rgb};
-    /// let m = Material::new().with_emission(Rgb::grey_f32(0.25).unwrap()); // Ka = 0.2
+    /// let m = Material::new().with_emission(Rgb::grey(0.25)); // Ka = 0.2
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let a = Rgb::grey_f32(0.5).unwrap();
+    /// let a = Rgb::grey(0.5);
     /// let lit: Lighting<_, InfiniteViewer, _> = Lighting::new(&m, a, &sun, &Mat4::IDENTITY);
     /// // E + A·Ka = 0.25 + 0.5 · 0.2 = 0.35, i.e. 22937.6 in Q.16.
     /// assert!((lit.ambient().to_bits()[0] as i64 - 22938).abs() <= 1);
     /// ```
     pub fn ambient(&self) -> Shade {
         Shade::from_bits(self.base[0], self.base[1], self.base[2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::{unit_from_f64, DirectionalLight};
+    use crate::material::BlinnPhong;
+    use crate::normalize::normalize_len;
+
+    fn rgb(c: [f64; 3]) -> Rgb {
+        Rgb::from_f64(c).expect("colour")
+    }
+
+    /// Blinn–Phong under the infinite viewer: the directional light's half
+    /// vector, computed once when the light is prepared, gives bit for bit the
+    /// colour of the general path ([`add_light`], which normalises `L + V` at
+    /// every call), over random normals and directions, including a light
+    /// straight behind the surface (`L = −V`, where `H` is undefined).
+    #[test]
+    fn directional_half_vector_prepared_once_is_the_per_vertex_one() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut dirs: Vec<[f64; 3]> = vec![[0.0, 0.0, -1.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
+        for _ in 0..60 {
+            dirs.push([next(), next(), next()]);
+        }
+        let (id, is) = (rgb([0.9, 0.7, 0.5]), rgb([1.0, 0.8, 0.6]));
+        let (kd, ks) = (rgb([0.8, 0.6, 0.4]), rgb([0.7, 0.7, 0.7]));
+        let mut checked = 0;
+        for &d in &dirs {
+            let Ok(dir) = unit_from_f64(d) else { continue };
+            let light = DirectionalLight {
+                direction: dir,
+                diffuse: id,
+                specular: is,
+            };
+            for shininess in [1u16, 32, 500] {
+                let material = Material::new()
+                    .with_ambient(Rgb::BLACK)
+                    .with_diffuse(kd)
+                    .with_specular(BlinnPhong {
+                        color: ks,
+                        shininess: Exponent::from_int(shininess),
+                    });
+                let lighting: Lighting<_, InfiniteViewer, _> =
+                    Lighting::new(&material, Rgb::BLACK, &light, &Mat4::IDENTITY);
+                // The light's eye-space direction as the kernel prepares it.
+                let b = dir.to_bits().map(i32::from);
+                let l = normalize_len(Mat4::IDENTITY.transform_dir_wide(b))
+                    .unwrap()
+                    .0;
+                let gains = Gains::new(id, is, kd, ks);
+                for _ in 0..200 {
+                    let Ok(n) = unit_from_f64([next(), next(), next()]) else {
+                        continue;
+                    };
+                    let ctx = Surface {
+                        position: Vec3::ZERO,
+                        normal: n,
+                        view: Unit3::Z,
+                        shininess: Exponent::from_int(shininess),
+                    };
+                    let mut acc = [0u32; 3];
+                    add_light::<BlinnPhong>(&ctx, l, 1 << 15, &gains, &mut acc);
+                    let general = acc.map(|c| c.min(1 << 16));
+                    assert_eq!(
+                        lighting.shade(Vec3::ZERO, n).to_bits(),
+                        general,
+                        "light {d:?} normal {:?} n = {shininess}",
+                        n.to_bits()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 30_000, "{checked} cases");
     }
 }

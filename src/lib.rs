@@ -1,4 +1,58 @@
-#![doc = include_str!("../README.md")]
+//! Shaded 3D meshes on microcontroller displays: a `no_std`,
+//! allocation-free, fixed-point renderer that lights, shades and
+//! rasterizes triangle meshes into any `embedded-graphics` `DrawTarget` in
+//! RGB565, within one LSB of an f64 reference, on cores with or without an
+//! FPU.
+//!
+//! ```
+//! use embedded_graphics::mock_display::MockDisplay; // or your display driver
+//! use fixshade::prelude::*;
+//!
+//! // A tetrahedron in the cube [−1, 1)³ (positions are fractions of the box).
+//! static POSITIONS: [[i16; 3]; 4] =
+//!     [[0, 32767, 0], [-28000, -16000, 16000], [28000, -16000, 16000], [0, -16000, -32767]];
+//! static TRIANGLES: [[u16; 3]; 4] = [[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]];
+//! const MESH: Mesh = Mesh::new(&POSITIONS, Bounds::cube(1.0), &TRIANGLES);
+//!
+//! let camera = Camera::look_at([0.0, 0.5, 3.0], [0.0; 3], [0.0, 1.0, 0.0])?;
+//! let sun = DirectionalLight::new([1.0, 1.0, 1.0])?;
+//! let material = Material::new().with_diffuse(Rgb::clamped(1.0, 0.5, 0.2));
+//! let renderer = Renderer::new(&camera, &material, &sun).with_shading(Flat);
+//!
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! let stats = MESH.shaded(&renderer).with_model(Mat4::rotation_y(0.5)).draw(&mut display)?;
+//! assert!(stats.pixels > 300);
+//! # Ok::<(), Box<dyn core::error::Error>>(())
+//! ```
+//!
+//! A [`Renderer`] holds what a frame shares (camera, material, lights,
+//! viewer, shading mode); [`Mesh::shaded`](mesh::Mesh::shaded) starts a
+//! draw, with its model matrix, depth test and vertex storage; the output
+//! passed to [`Shaded::draw`] decides how the frame is made: any
+//! `DrawTarget`, a [`Framebuffer`](framebuffer::Framebuffer) written in
+//! place, or [`Bands`](band::Bands) of a few rows through a small buffer.
+//! Every choice is a value whose type the compiler infers, and what a scene
+//! does not use is not compiled (the table is in [`Shaded`]'s module,
+//! [`renderer`]).
+//!
+//! # The pipeline
+//! One triangle from mesh to pixels, a module a stage:
+//!
+//! | stage | module |
+//! | --- | --- |
+//! | mesh in flash: `i16` positions in a box, packed normals, `u16` indices | [`mesh`] |
+//! | camera, projection | [`camera`] |
+//! | per vertex: model-view, projection, window position; lighting | `vertex`, [`illumination`], [`light`], [`material`], `specular_table`, `normalize` |
+//! | per triangle: culling, near clipping, facing | [`render`] |
+//! | set-up: edges and attribute planes | `setup` |
+//! | coverage: the watertight edge functions | `rasterizer` |
+//! | spans: depth test, shading, RGB565 | `span`, [`depth`], [`color`] |
+//! | output: a `DrawTarget`, a framebuffer, bands | [`renderer`], [`framebuffer`], [`band`] |
+//!
+//! Numbers are fixed-point throughout ([`num`], [`vector`]); each format's
+//! range and overflow proof is stated where it is defined. The conventions
+//! (coordinate systems, the illumination equation, rounding) are the
+//! project's SPEC.md, shipped in the package's `docs/`.
 // The unit tests use the standard library (its prelude, `Vec`, threads).
 #![cfg_attr(not(test), no_std)]
 #![warn(missing_docs)]
@@ -12,19 +66,68 @@ pub mod illumination;
 pub mod light;
 pub mod material;
 pub mod mesh;
-pub mod normalize;
+mod normalize;
 pub mod num;
 mod platform;
-pub mod rasterizer;
+mod rasterizer;
 pub mod render;
+pub mod renderer;
 mod setup;
-pub mod span;
-pub mod specular_table;
+mod span;
+mod specular_table;
 pub mod vector;
 mod vertex;
+
+#[cfg(test)]
+mod tests;
+
+pub use renderer::{FrameDepth, Output, Renderer, Shaded};
 
 pub use color::{Rgb, Shade};
 pub use illumination::Lighting;
 pub use material::Material;
 pub use specular_table::Exponent;
 pub use vector::{Mat4, Unit3, Vec3};
+
+// Every error is a `core::error::Error`, so that `?` reaches a `Box<dyn
+// Error>` or an application's own error type.
+impl core::error::Error for camera::CameraError {}
+impl core::error::Error for depth::DepthBufferTooSmall {}
+impl core::error::Error for framebuffer::FramebufferTooSmall {}
+impl core::error::Error for light::LightError {}
+impl core::error::Error for mesh::MeshError {}
+impl<E: core::fmt::Debug> core::error::Error for render::RenderError<E> {}
+impl core::error::Error for vector::FormatError {}
+
+/// What a program that draws meshes needs, in one `use`.
+///
+/// ```
+/// use fixshade::prelude::*;
+/// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+/// let _renderer = Renderer::new(&camera, &Material::new(), &sun).with_shading(Flat);
+/// ```
+pub mod prelude {
+    pub use embedded_graphics::pixelcolor::Rgb565;
+    pub use embedded_graphics::Drawable as _;
+
+    pub use crate::band::Bands;
+    pub use crate::camera::{Camera, Projection};
+    pub use crate::depth::{DepthBand, DepthBuffer};
+    pub use crate::framebuffer::Framebuffer;
+    pub use crate::illumination::{InfiniteViewer, LocalViewer};
+    pub use crate::light::{
+        AreaLight, Attenuation, DirectionalLight, PointLight, SpotCone, SpotLight,
+    };
+    pub use crate::material::{BlinnPhong, Material, Phong};
+    pub use crate::mesh::{Bounds, Mesh, PackedNormal};
+    pub use crate::render::{
+        CachedVertex, Flat, Gouraud, PhongShading, RenderError, RenderOptions,
+    };
+    pub use crate::{Exponent, Mat4, Renderer, Rgb, Unit3, Vec3};
+}
+
+/// The README's code runs as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -361,7 +361,7 @@ pub trait PreparedLights: Clone + core::fmt::Debug {
 ///     let l = Lighting::<_, InfiniteViewer, _>::new(&m, Rgb::BLACK, lights, &Mat4::IDENTITY);
 ///     l.shade(Vec3::ZERO, Unit3::Z).to_bits()
 /// }
-/// let quarter = Rgb::grey_f32(0.25).unwrap();
+/// let quarter = Rgb::grey(0.25);
 /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap().with_diffuse(quarter);
 /// assert_eq!(lit(&(sun, [sun; 2])), lit(&sun).map(|c| 3 * c)); // a tuple holding an array
 /// assert_eq!(lit(&()), [0; 3]);
@@ -386,7 +386,7 @@ pub trait LightSet {
 /// use fixshade::light::DirectionalLight;
 /// use fixshade::Rgb;
 /// let sun = DirectionalLight::new([1.0, 1.0, 1.0]).unwrap()
-///     .with_specular(Rgb::grey_f32(0.5).unwrap());
+///     .with_specular(Rgb::grey(0.5));
 /// assert_eq!(sun.diffuse, Rgb::WHITE);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -434,7 +434,7 @@ impl DirectionalLight {
     /// ```
     /// use fixshade::light::DirectionalLight;
     /// use fixshade::Rgb;
-    /// let red = Rgb::from_f32(1.0, 0.0, 0.0).unwrap();
+    /// let red = Rgb::clamped(1.0, 0.0, 0.0);
     /// let sun = DirectionalLight::new([0.0, 1.0, 0.0]).unwrap().with_diffuse(red);
     /// assert_eq!((sun.diffuse, sun.specular), (red, Rgb::WHITE));
     /// ```
@@ -462,7 +462,7 @@ impl DirectionalLight {
 /// ```
 /// use fixshade::light::DirectionalLight;
 /// use fixshade::{illumination::InfiniteViewer, Lighting, Material, Mat4, Rgb, Unit3, Vec3};
-/// let view = Mat4::rotation(1, core::f32::consts::FRAC_PI_2); // +x (world) → −z (eye)
+/// let view = Mat4::rotation_y(core::f32::consts::FRAC_PI_2); // +x (world) → −z (eye)
 /// let sun = DirectionalLight::new([1.0, 0.0, 0.0]).unwrap();
 /// let m = Material::new().with_diffuse(Rgb::WHITE);
 /// // `Lighting::new` prepares the sun: a `PreparedDirectional`, in eye space.
@@ -555,7 +555,7 @@ impl<A: Falloff> PointLight<A> {
     /// ```
     /// use fixshade::light::PointLight;
     /// use fixshade::Rgb;
-    /// let warm = Rgb::from_f32(1.0, 0.8, 0.6).unwrap();
+    /// let warm = Rgb::clamped(1.0, 0.8, 0.6);
     /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap().without_attenuation();
     /// let lamp = lamp.with_diffuse(warm); // any falloff
     /// assert_eq!((lamp.diffuse, lamp.specular), (warm, Rgb::WHITE));
@@ -569,7 +569,7 @@ impl<A: Falloff> PointLight<A> {
     /// ```
     /// use fixshade::light::PointLight;
     /// use fixshade::Rgb;
-    /// let half = Rgb::grey_f32(0.5).unwrap();
+    /// let half = Rgb::grey(0.5);
     /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap().with_specular(half);
     /// assert_eq!(lamp.specular.to_bits(), [1 << 15; 3]);
     /// assert_eq!(lamp.diffuse, Rgb::WHITE);
@@ -604,7 +604,7 @@ impl<A: Falloff> PointLight<A> {
     /// use fixshade::light::{Attenuation, NoAttenuation, PointLight};
     /// use fixshade::Rgb;
     /// let lamp = PointLight::new([0.0, 2.0, 0.0]).unwrap()
-    ///     .with_diffuse(Rgb::grey_f32(0.5).unwrap())
+    ///     .with_diffuse(Rgb::grey(0.5))
     ///     .with_attenuation(Attenuation::new(1.0, 0.0, 1.0).unwrap());
     /// let cheap: PointLight<NoAttenuation> = lamp.without_attenuation();
     /// assert_eq!(cheap.attenuation, NoAttenuation); // the constants are dropped
@@ -742,7 +742,7 @@ impl<A: Falloff> SpotLight<A> {
     /// ```
     /// use fixshade::light::SpotLight;
     /// use fixshade::Rgb;
-    /// let blue = Rgb::from_f32(0.2, 0.4, 1.0).unwrap();
+    /// let blue = Rgb::clamped(0.2, 0.4, 1.0);
     /// let spot = SpotLight::new([0.0, 3.0, 0.0], [0.0, -1.0, 0.0], 30.0, 8.0).unwrap();
     /// let spot = spot.with_diffuse(blue);
     /// assert_eq!((spot.light.diffuse, spot.light.specular), (blue, Rgb::WHITE));
@@ -978,7 +978,7 @@ impl<A: Falloff> AreaLight<A> {
     /// use fixshade::Rgb;
     /// let panel = AreaLight::new([0.0, 3.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 2).unwrap();
     /// // The whole light's intensity: each of the k² samples carries 1/k² of it.
-    /// let dim = panel.with_diffuse(Rgb::grey_f32(0.5).unwrap());
+    /// let dim = panel.with_diffuse(Rgb::grey(0.5));
     /// assert_eq!(dim.diffuse.to_bits(), [1 << 15; 3]);
     /// assert_eq!(dim.specular, Rgb::WHITE);
     /// ```
@@ -1140,7 +1140,7 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
 ///     l.shade(Vec3::ZERO, Unit3::Z).to_bits()
 /// }
 /// let sun = DirectionalLight::new([0.0, 1.0, 1.0]).unwrap();
-/// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap().with_diffuse(Rgb::grey_f32(0.5).unwrap());
+/// let lamp = PointLight::new([0.0, 0.0, 2.0]).unwrap().with_diffuse(Rgb::grey(0.5));
 /// let any = [AnyLight::Directional(sun), AnyLight::Point(lamp)];
 /// assert_eq!(lit(&any), lit(&(sun, lamp))); // the same colour as the concrete types
 /// ```

@@ -62,9 +62,9 @@ impl Specular for NoSpecular {
 /// ```
 /// use fixshade::{Material, Rgb};
 /// use fixshade::material::BlinnPhong;
-/// use fixshade::specular_table::Exponent;
+/// use fixshade::Exponent;
 /// let m = Material::new().with_specular(BlinnPhong {
-///     color: Rgb::grey_f32(0.5).unwrap(),
+///     color: Rgb::grey(0.5),
 ///     shininess: Exponent::from_int(32),
 /// });
 /// assert_eq!(m.specular.shininess, Exponent::from_int(32));
@@ -93,7 +93,7 @@ impl Specular for BlinnPhong {
 /// ```
 /// use fixshade::{Material, Rgb};
 /// use fixshade::material::Phong;
-/// use fixshade::specular_table::Exponent;
+/// use fixshade::Exponent;
 /// let m = Material::new().with_specular(Phong { color: Rgb::WHITE, shininess: Exponent::from_int(100) });
 /// assert_eq!(m.specular.color, Rgb::WHITE);
 /// ```
@@ -125,8 +125,8 @@ impl Specular for Phong {
 /// ```
 /// use fixshade::{Material, Rgb};
 /// let m = Material::new()
-///     .with_ambient(Rgb::from_f32(1.0, 0.5, 0.2).unwrap())
-///     .with_diffuse(Rgb::from_f32(1.0, 0.5, 0.2).unwrap());
+///     .with_ambient(Rgb::clamped(1.0, 0.5, 0.2))
+///     .with_diffuse(Rgb::clamped(1.0, 0.5, 0.2));
 /// assert_eq!(m.emission, Rgb::BLACK);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -154,8 +154,8 @@ impl Material<NoSpecular> {
     /// use fixshade::{Material, Rgb};
     /// let m = Material::new();
     /// assert_eq!(m.emission, Rgb::BLACK);
-    /// assert_eq!(m.ambient, Rgb::grey_f32(0.2).unwrap());
-    /// assert_eq!(m.diffuse, Rgb::grey_f32(0.8).unwrap());
+    /// assert_eq!(m.ambient, Rgb::grey(0.2));
+    /// assert_eq!(m.diffuse, Rgb::grey(0.8));
     /// assert_eq!(m, Material::default());
     /// ```
     pub const fn new() -> Self {
@@ -197,7 +197,7 @@ impl<S: Specular> Material<S> {
     ///
     /// ```
     /// use fixshade::{Material, Rgb};
-    /// let red = Rgb::from_f32(1.0, 0.0, 0.0).unwrap();
+    /// let red = Rgb::clamped(1.0, 0.0, 0.0);
     /// let m = Material::new().with_diffuse(red);
     /// assert_eq!(m.diffuse, red);
     /// assert_eq!(m.ambient, Material::new().ambient);
@@ -211,7 +211,7 @@ impl<S: Specular> Material<S> {
     /// ```
     /// use fixshade::material::{NoSpecular, Phong};
     /// use fixshade::{Exponent, Material, Rgb};
-    /// let base = Material::new().with_diffuse(Rgb::grey_f32(0.5).unwrap());
+    /// let base = Material::new().with_diffuse(Rgb::grey(0.5));
     /// let shiny: Material<Phong> =
     ///     base.with_specular(Phong { color: Rgb::WHITE, shininess: Exponent::from_int(16) });
     /// assert_eq!(shiny.diffuse, base.diffuse); // colours are kept

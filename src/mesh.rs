@@ -40,7 +40,7 @@
 //! each coordinate moves that point by at most `√6/65534` and the
 //! octahedron's points are at least `1/√3` from the origin, so the angle
 //! error is at most `3√2/65534 ≈ 6.5·10⁻⁵` radian (0.0037°);
-//! `tests/mesh_format.rs` measures `6.43·10⁻⁵` over a million directions,
+//! `host/tests/suite/mesh_format.rs` measures `6.43·10⁻⁵` over a million directions,
 //! the axes and the octahedron's seams included. The renderer transforms
 //! the octahedron's point itself and normalises once, to `I2F14`.
 //!
@@ -171,6 +171,29 @@ impl Bounds {
     /// assert_eq!(Bounds::UNIT.position_f64([16384, -32768, 0]), [0.5, -1.0, 0.0]);
     /// ```
     pub const UNIT: Bounds = Bounds::from_bits([0; 3], [1 << COORD_FRAC; 3]);
+
+    /// The cube `[−half, half)³` about the origin, for `const` data: `half`
+    /// rounded to `2⁻²⁴` and clamped to `[2⁻²⁴, 128]` (NaN is the least).
+    ///
+    /// ```
+    /// use fixshade::mesh::Bounds;
+    /// const B: Bounds = Bounds::cube(2.0);
+    /// assert_eq!(B, Bounds::from_bits([0; 3], [2 << 24; 3]));
+    /// assert_eq!(B.position_f64([-32768, 16384, 0]), [-2.0, 1.0, 0.0]);
+    /// assert_eq!(Bounds::cube(1e9), Bounds::cube(128.0));
+    /// ```
+    pub const fn cube(half: f32) -> Self {
+        // `as` saturates (NaN to 0); 128 · 2^24 = 2^31 fits u32.
+        let s = (half as f64 * (1u64 << COORD_FRAC) as f64 + 0.5) as u32;
+        let s = if s < 1 {
+            1
+        } else if s > 1 << 31 {
+            1 << 31
+        } else {
+            s
+        };
+        Bounds::from_bits([0; 3], [s; 3])
+    }
 
     /// A box from raw bits (usable in `const` and `static` data).
     ///
@@ -355,7 +378,7 @@ impl PackedNormal {
         }
     }
 
-    /// The direction as an `I2F14` unit vector ([`crate::normalize::normalize`]
+    /// The direction as an `I2F14` unit vector (the kernel's `normalize`
     /// of [`PackedNormal::octahedron`]).
     ///
     /// ```
@@ -468,7 +491,7 @@ pub struct Aligned<B: ?Sized>(pub B);
 /// A [`Mesh`] from a file of its byte layout, included at compile time:
 /// `include_mesh!("bunny.fxm")` is `Mesh::from_bytes` of the file's bytes,
 /// aligned ([`Aligned`]), a `Result<Mesh<'static>, MeshError>`. The host
-/// converter writes such files (`examples/convert_mesh.rs`).
+/// converter writes such files (the `fixshade-convert` command of the host tools).
 ///
 /// ```
 /// # fn main() -> Result<(), fixshade::mesh::MeshError> {

@@ -21,10 +21,11 @@
 //!    rounded to nearest `I2F14`; the sign is put back afterwards, so
 //!    `normalize(−v) == −normalize(v)` exactly.
 //!
-//! # Accuracy (measured by `tests/normalize.rs`)
+//! # Accuracy (measured by `src/tests/normalize.rs`)
 //!
 //! Worst component error against the f64 value `v_i/|v|` (1 ULP = 2⁻¹⁴;
-//! run `cargo test --test normalize -- --nocapture` for the figures):
+//! run `cargo test -p fixshade --lib tests::normalize -- --nocapture` for the
+//! figures):
 //!
 //! | test | vectors | max error | exactly rounded |
 //! | --- | --- | --- | --- |
@@ -96,18 +97,8 @@ const B_TOP: u32 = 19;
 /// into `[2³⁰, 2³²)`; then `1/√n = rsqrt_q(n << 2k) · 2^(k − 46)`.
 ///
 /// Cost: two table reads and six 32 × 32 → 32-bit multiplies.
-///
-/// ```
-/// use fixshade::normalize::rsqrt_q;
-/// // X = 1/4 → 1/√X = 2, i.e. 2^31 in Q2.30 (to within 2^-23 relative).
-/// let y = rsqrt_q(1 << 30) as i64;
-/// assert!((y - (1i64 << 31)).abs() < 1 << 8);
-/// // X = 9/16 → 4/3.
-/// let y = rsqrt_q(9 << 28) as i64;
-/// assert!((y - (4i64 << 30) / 3).abs() < 1 << 8);
-/// ```
 #[inline]
-pub fn rsqrt_q(x: u32) -> u32 {
+pub(crate) fn rsqrt_q(x: u32) -> u32 {
     let x = if x < 1 << 30 { 1 << 30 } else { x };
     // x ∈ [2^30, 2^32): top 6 bits ∈ [16, 64), so i ∈ [0, 48) and i + 1 ≤ 48.
     let i = ((x >> 26) - 16) as usize;
@@ -186,18 +177,8 @@ fn unit_core(b: [u32; 3], neg: [bool; 3]) -> Unit3 {
 /// Components are rounded to nearest `I2F14`, within 0.54 ULP (0.514 measured) of the exact
 /// `v_i/|v|` (see the module docs), and `normalize(−v) == −normalize(v)`
 /// whenever `−v` is representable. Only 32-bit multiplies (18 of them).
-///
-/// ```
-/// use fixshade::{normalize::normalize, Unit3};
-/// assert_eq!(normalize([0, 0, 5]), Some(Unit3::Z));
-/// assert_eq!(normalize([0, 0, 0]), None);
-/// // (3, 4, 0)/5 = (0.6, 0.8, 0): 0.6·2^14 = 9830.4, 0.8·2^14 = 13107.2.
-/// assert_eq!(normalize([-300, 400, 0]).unwrap().to_bits(), [-9830, 13107, 0]);
-/// // Extremes are fine: |i32::MIN| is taken without overflow.
-/// assert_eq!(normalize([i32::MIN, 0, 0]), Some(Unit3::X.neg()));
-/// ```
 #[inline]
-pub fn normalize(v: [i32; 3]) -> Option<Unit3> {
+pub(crate) fn normalize(v: [i32; 3]) -> Option<Unit3> {
     let a = v.map(i32::unsigned_abs); // each ≤ 2^31
     let m = a[0] | a[1] | a[2]; // same top bit as the largest
     if m == 0 {
@@ -223,16 +204,7 @@ pub fn normalize(v: [i32; 3]) -> Option<Unit3> {
 /// The unit vector is as accurate as [`normalize`]'s. The length is the
 /// exactly rounded `|v|` when every `|v_i| < 2³¹`, and within a relative
 /// `2⁻²⁹` otherwise. It always fits: `|v| ≤ √3·2⁶³ < 2⁶⁴`.
-///
-/// ```
-/// use fixshade::normalize::normalize_len;
-/// let (u, len) = normalize_len([0, -3 << 40, 4 << 40]).unwrap();
-/// assert_eq!(len, 5 << 40);
-/// assert_eq!(u.to_bits(), [0, -9830, 13107]);
-/// assert_eq!(normalize_len([1, 1, 1]).unwrap().1, 2); // √3 = 1.73…
-/// assert_eq!(normalize_len([0, 0, 0]), None);
-/// ```
-pub fn normalize_len(v: [i64; 3]) -> Option<(Unit3, u64)> {
+pub(crate) fn normalize_len(v: [i64; 3]) -> Option<(Unit3, u64)> {
     let a = v.map(i64::unsigned_abs); // each ≤ 2^63
     let m = a[0] | a[1] | a[2];
     if m == 0 {
@@ -302,4 +274,45 @@ fn round_sqrt(s: u64) -> u64 {
         n += 1;
     }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    /// The example from the docs of `rsqrt_q`.
+    #[test]
+    fn doc_rsqrt_q() {
+        use crate::normalize::rsqrt_q;
+        // X = 1/4 → 1/√X = 2, i.e. 2^31 in Q2.30 (to within 2^-23 relative).
+        let y = rsqrt_q(1 << 30) as i64;
+        assert!((y - (1i64 << 31)).abs() < 1 << 8);
+        // X = 9/16 → 4/3.
+        let y = rsqrt_q(9 << 28) as i64;
+        assert!((y - (4i64 << 30) / 3).abs() < 1 << 8);
+    }
+
+    /// The example from the docs of `normalize`.
+    #[test]
+    fn doc_normalize() {
+        use crate::{normalize::normalize, Unit3};
+        assert_eq!(normalize([0, 0, 5]), Some(Unit3::Z));
+        assert_eq!(normalize([0, 0, 0]), None);
+        // (3, 4, 0)/5 = (0.6, 0.8, 0): 0.6·2^14 = 9830.4, 0.8·2^14 = 13107.2.
+        assert_eq!(
+            normalize([-300, 400, 0]).unwrap().to_bits(),
+            [-9830, 13107, 0]
+        );
+        // Extremes are fine: |i32::MIN| is taken without overflow.
+        assert_eq!(normalize([i32::MIN, 0, 0]), Some(Unit3::X.neg()));
+    }
+
+    /// The example from the docs of `normalize_len`.
+    #[test]
+    fn doc_normalize_len() {
+        use crate::normalize::normalize_len;
+        let (u, len) = normalize_len([0, -3 << 40, 4 << 40]).unwrap();
+        assert_eq!(len, 5 << 40);
+        assert_eq!(u.to_bits(), [0, -9830, 13107]);
+        assert_eq!(normalize_len([1, 1, 1]).unwrap().1, 2); // √3 = 1.73…
+        assert_eq!(normalize_len([0, 0, 0]), None);
+    }
 }

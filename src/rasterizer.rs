@@ -1,4 +1,5 @@
-//! The rasterizer's public entry: one triangle of window positions, its
+//! The rasterizer's standalone entry (compiled for the tests; the renderer
+//! calls the set-up itself): one triangle of window positions, its
 //! spans through a callback. It runs the renderer's own set-up and walk
 //! (`src/setup.rs`: 32-bit edges and attribute planes), with the same
 //! limits: vertices within the guard band around the clip rectangle's
@@ -20,21 +21,8 @@ use crate::num::widening::{mul_narrow, mul_u32};
 use crate::setup;
 
 /// Sub-pixel bits of the snapping grid (SPEC.md 5: 1/16 pixel).
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, SUBPIXEL_BITS};
-/// // Pixel (x, y) has its centre at 16x + 8: a triangle whose vertices
-/// // sit on pixel corners, one pixel in from the target's, covers its box.
-/// let px = |c: i64| c << SUBPIXEL_BITS;
-/// let v = [(px(1), px(1)), (px(1), px(5)), (px(5), px(1))]
-///     .map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let mut n = 0;
-/// rasterize(&v, ClipRect::of_size(8, 8).unwrap(), false, |s| n += s.x1 - s.x0 + 1);
-/// // The centres strictly below the diagonal of the 4 × 4 box: those on
-/// // it lie on a right edge, which the top-left rule leaves out.
-/// assert_eq!(n, 3 + 2 + 1);
-/// ```
-pub const SUBPIXEL_BITS: u32 = 4;
+#[cfg(test)]
+pub(crate) const SUBPIXEL_BITS: u32 = 4;
 
 /// The renderer clamps window positions to ±2²⁸ (1/16 pixel, ±2²⁴ pixels):
 /// past it a vertex moves (SPEC.md departures); the guard band's clipping
@@ -44,124 +32,63 @@ pub(crate) const COORD_LIMIT: i64 = 1 << 28;
 /// How far a vertex may lie from the clip rectangle's centre pixel corner,
 /// in 1/16 pixel, on each axis (±1 023 pixels): then every edge function,
 /// area and step of the set-up fits `i32`.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, GUARD};
-/// let clip = ClipRect::of_size(8, 8).unwrap(); // centre pixel corner (4, 4): 64
-/// let tri = |far: i64| [(64, 64), (64, 64 + far), (64 + far, 64)]
-///     .map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// // At the limit the triangle covers the target; past it, it is refused.
-/// assert!(rasterize(&tri(GUARD), clip, false, |_| ()).is_some());
-/// assert!(rasterize(&tri(GUARD + 1), clip, false, |_| ()).is_none());
-/// ```
-pub const GUARD: i64 = setup::GUARD as i64;
+pub(crate) const GUARD: i64 = setup::GUARD as i64;
 
 /// Attributes lie within `±ATTR_LIMIT` (2²⁵), so that the set-up's
 /// differences, with four fractional bits, fit 32 bits.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, ATTR_LIMIT};
-/// let clip = ClipRect::of_size(8, 8).unwrap();
-/// let tri = |a: i64| [(0, 0, a), (0, 256, -a), (256, 0, 0)]
-///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
-/// assert!(rasterize(&tri(ATTR_LIMIT), clip, false, |_| ()).is_some());
-/// assert!(rasterize(&tri(ATTR_LIMIT + 1), clip, false, |_| ()).is_none());
-/// ```
-pub const ATTR_LIMIT: i64 = setup::ATTR as i64;
+#[cfg(test)]
+pub(crate) const ATTR_LIMIT: i64 = setup::ATTR as i64;
 
 /// A triangle vertex in window space: position in 1/16 pixel and `N`
 /// attributes in the caller's units.
 ///
 /// [`rasterize`] draws nothing for a triangle with a vertex outside the
 /// limits ([`GUARD`], [`ATTR_LIMIT`]).
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
-/// // One attribute, 0 at the left and 1600 at the right (16 pixels on):
-/// // 100 units per pixel along x.
-/// let v = [(0, 0, 0), (0, 256, 0), (256, 0, 1600)]
-///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
-/// let mut first = None;
-/// rasterize(&v, ClipRect::of_size(16, 16).unwrap(), false, |s| {
-///     first.get_or_insert((s.start[0], s.step[0]));
-/// });
-/// assert_eq!(first, Some((50, 100))); // pixel (0, 0)'s centre is half a pixel in
-/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct RasterVertex<const N: usize> {
+pub(crate) struct RasterVertex<const N: usize> {
     /// x in 1/16 pixel, within [`GUARD`] of the clip rectangle's centre.
-    pub x: i64,
+    pub(crate) x: i64,
     /// y in 1/16 pixel (down), within [`GUARD`] of the clip rectangle's centre.
-    pub y: i64,
+    pub(crate) y: i64,
     /// Attributes, each within ±[`ATTR_LIMIT`].
-    pub attr: [i64; N],
+    pub(crate) attr: [i64; N],
 }
 
 /// The inclusive pixel rectangle that may be drawn (the target's bounds),
 /// at most [`CLIP_LIMIT`] pixels a side for the rasterizer to draw in it
 /// (see [`ClipRect::within_limits`]).
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
-/// let v = [(0, 0), (0, 4096), (4096, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let clip = ClipRect { x0: 2, y0: 3, x1: 5, y1: 4 };
-/// let mut rows = Vec::new();
-/// rasterize(&v, clip, false, |s| rows.push((s.y, s.x0, s.x1)));
-/// assert_eq!(rows, [(3, 2, 5), (4, 2, 5)]); // nothing outside the rectangle
-/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ClipRect {
+pub(crate) struct ClipRect {
     /// First column.
-    pub x0: i32,
+    pub(crate) x0: i32,
     /// First row.
-    pub y0: i32,
+    pub(crate) y0: i32,
     /// Last column (inclusive).
-    pub x1: i32,
+    pub(crate) x1: i32,
     /// Last row (inclusive).
-    pub y1: i32,
+    pub(crate) y1: i32,
 }
 
 /// The most pixels a [`ClipRect`] may span on either axis: a tile of the
 /// renderer, whose guard band ([`GUARD`]) holds it with two pixels to
 /// spare.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, CLIP_LIMIT};
-/// let v = [(0, 0), (0, 64), (64, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let huge = ClipRect { x0: 0, y0: 0, x1: CLIP_LIMIT as i32, y1: 0 };
-/// assert!(rasterize(&v, huge, false, |_| ()).is_none()); // refused, not drawn
-/// let fits = ClipRect { x1: CLIP_LIMIT as i32 - 1, ..huge };
-/// assert!(rasterize(&v, fits, false, |_| ()).is_some());
-/// ```
-pub const CLIP_LIMIT: i64 = 2032;
+pub(crate) const CLIP_LIMIT: i64 = 2032;
 const _: () = assert!(8 * CLIP_LIMIT + 32 <= GUARD - 40);
 
 impl ClipRect {
     /// Whether the rasterizer draws in this rectangle: each side at most
     /// [`CLIP_LIMIT`] pixels (an empty rectangle, `x0 > x1` or `y0 > y1`,
     /// qualifies and draws nothing).
-    ///
-    /// ```
-    /// use fixshade::rasterizer::{ClipRect, CLIP_LIMIT};
-    /// assert!(ClipRect::of_size(320, 240).unwrap().within_limits());
-    /// assert!(ClipRect::of_size(CLIP_LIMIT as u32, 1).unwrap().within_limits());
-    /// assert!(!ClipRect::of_size(CLIP_LIMIT as u32 + 1, 1).unwrap().within_limits());
-    /// ```
+    #[cfg(test)]
     #[inline]
-    pub fn within_limits(&self) -> bool {
+    pub(crate) fn within_limits(&self) -> bool {
         let side = |a: i32, b: i32| (b as i64) - (a as i64) < CLIP_LIMIT;
         side(self.x0, self.x1) && side(self.y0, self.y1)
     }
 
     /// The rectangle of a `width × height` target at the origin; `None`
     /// when it is empty.
-    ///
-    /// ```
-    /// use fixshade::rasterizer::ClipRect;
-    /// assert_eq!(ClipRect::of_size(320, 240), Some(ClipRect { x0: 0, y0: 0, x1: 319, y1: 239 }));
-    /// assert_eq!(ClipRect::of_size(0, 240), None);
-    /// ```
-    pub fn of_size(width: u32, height: u32) -> Option<ClipRect> {
+    pub(crate) fn of_size(width: u32, height: u32) -> Option<ClipRect> {
         if width == 0 || height == 0 {
             return None;
         }
@@ -175,18 +102,9 @@ impl ClipRect {
 }
 
 /// Which way a triangle faces on screen.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, Facing, RasterVertex};
-/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let clip = ClipRect::of_size(16, 16).unwrap();
-/// let back = [v[0], v[2], v[1]];
-/// assert_eq!(rasterize(&v, clip, true, |_| ()), Some(Facing::Front));
-/// assert_eq!(rasterize(&back, clip, false, |_| ()), Some(Facing::Back)); // kept: no culling
-/// assert_eq!(rasterize(&back, clip, true, |_| ()), None); // culled
-/// ```
+#[cfg(test)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Facing {
+pub(crate) enum Facing {
     /// Counter-clockwise in NDC (clockwise on screen, y down).
     Front,
     /// Clockwise in NDC.
@@ -494,30 +412,19 @@ const NARROW_NUM: u64 = 1 << 31;
 
 /// What a span covers: row `y`, columns `x0 ..= x1`, the attributes at `x0`
 /// and their step per pixel.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
-/// // attr = 10·x_px + 1000·y_px at pixel centres.
-/// let v = [(0, 0, 0), (0, 512, 32_000), (512, 0, 320)]
-///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
-/// rasterize(&v, ClipRect::of_size(32, 32).unwrap(), false, |s| {
-///     let at = |x: i32| 10 * x as i64 + 1000 * s.y as i64 + 505;
-///     assert_eq!(s.start[0], at(s.x0));
-///     assert_eq!(s.start[0] + (s.x1 - s.x0) as i64 * s.step[0], at(s.x1));
-/// });
-/// ```
+#[cfg(test)]
 #[derive(Clone, Copy, Debug)]
-pub struct Span<const N: usize> {
+pub(crate) struct Span<const N: usize> {
     /// Row.
-    pub y: i32,
+    pub(crate) y: i32,
     /// First column.
-    pub x0: i32,
+    pub(crate) x0: i32,
     /// Last column (inclusive).
-    pub x1: i32,
+    pub(crate) x1: i32,
     /// Attributes at `x0`.
-    pub start: [i64; N],
+    pub(crate) start: [i64; N],
     /// Attribute step per pixel.
-    pub step: [i64; N],
+    pub(crate) step: [i64; N],
 }
 
 /// How far a span's attributes may stray from the range of the triangle's
@@ -526,34 +433,14 @@ pub struct Span<const N: usize> {
 /// the span is within `DRIFT + k/2`. The plane at a covered pixel lies
 /// between the vertex values; the set-up's rounding of origin and
 /// gradients adds the rest (`src/setup.rs`).
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex, DRIFT};
-/// let v = [(3, 5, 0), (90, 1000, 77_777), (1700, 40, -12_345)]
-///     .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
-/// rasterize(&v, ClipRect::of_size(128, 128).unwrap(), false, |s| {
-///     for k in 0..=(s.x1 - s.x0) as i64 {
-///         let a = s.start[0] + k * s.step[0];
-///         let d = DRIFT + (k + 1) / 2;
-///         assert!((-12_345 - d..=77_777 + d).contains(&a));
-///     }
-/// });
-/// ```
-pub const DRIFT: i64 = setup::DRIFT as i64;
+pub(crate) const DRIFT: i64 = setup::DRIFT as i64;
 
 /// Sets up triangle `v` and calls `f` with each of its spans inside `clip`,
 /// top to bottom; returns how it faced, or `None` if it drew nothing (no
 /// area, culled, no sample row inside, or a vertex or `clip` outside the
 /// limits: [`GUARD`], [`ATTR_LIMIT`], [`ClipRect::within_limits`]).
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize, ClipRect, RasterVertex};
-/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let mut pixels = 0;
-/// rasterize(&v, ClipRect::of_size(16, 16).unwrap(), true, |s| pixels += s.x1 - s.x0 + 1);
-/// assert!(pixels > 50);
-/// ```
-pub fn rasterize<const N: usize>(
+#[cfg(test)]
+pub(crate) fn rasterize<const N: usize>(
     v: &[RasterVertex<N>; 3],
     clip: ClipRect,
     cull: bool,
@@ -566,15 +453,8 @@ pub fn rasterize<const N: usize>(
 /// band), with exactly the spans the whole rectangle gives on those rows:
 /// the guard band and the planes are anchored at `clip`'s centre, whatever
 /// the rows.
-///
-/// ```
-/// use fixshade::rasterizer::{rasterize_rows, ClipRect, RasterVertex};
-/// let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
-/// let mut rows = Vec::new();
-/// rasterize_rows(&v, ClipRect::of_size(16, 16).unwrap(), (4, 5), true, |s| rows.push(s.y));
-/// assert_eq!(rows, [4, 5]);
-/// ```
-pub fn rasterize_rows<const N: usize>(
+#[cfg(test)]
+pub(crate) fn rasterize_rows<const N: usize>(
     v: &[RasterVertex<N>; 3],
     clip: ClipRect,
     rows: (i32, i32),
@@ -810,5 +690,201 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    /// The example from the docs of `SUBPIXEL_BITS`.
+    #[test]
+    fn doc_subpixel_bits() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex, SUBPIXEL_BITS};
+        // Pixel (x, y) has its centre at 16x + 8: a triangle whose vertices
+        // sit on pixel corners, one pixel in from the target's, covers its box.
+        let px = |c: i64| c << SUBPIXEL_BITS;
+        let v = [(px(1), px(1)), (px(1), px(5)), (px(5), px(1))].map(|(x, y)| RasterVertex {
+            x,
+            y,
+            attr: [],
+        });
+        let mut n = 0;
+        rasterize(&v, ClipRect::of_size(8, 8).unwrap(), false, |s| {
+            n += s.x1 - s.x0 + 1
+        });
+        // The centres strictly below the diagonal of the 4 × 4 box: those on
+        // it lie on a right edge, which the top-left rule leaves out.
+        assert_eq!(n, 3 + 2 + 1);
+    }
+
+    /// The example from the docs of `GUARD`.
+    #[test]
+    fn doc_guard() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex, GUARD};
+        let clip = ClipRect::of_size(8, 8).unwrap(); // centre pixel corner (4, 4): 64
+        let tri = |far: i64| {
+            [(64, 64), (64, 64 + far), (64 + far, 64)].map(|(x, y)| RasterVertex { x, y, attr: [] })
+        };
+        // At the limit the triangle covers the target; past it, it is refused.
+        assert!(rasterize(&tri(GUARD), clip, false, |_| ()).is_some());
+        assert!(rasterize(&tri(GUARD + 1), clip, false, |_| ()).is_none());
+    }
+
+    /// The example from the docs of `ATTR_LIMIT`.
+    #[test]
+    fn doc_attr_limit() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex, ATTR_LIMIT};
+        let clip = ClipRect::of_size(8, 8).unwrap();
+        let tri = |a: i64| {
+            [(0, 0, a), (0, 256, -a), (256, 0, 0)].map(|(x, y, a)| RasterVertex { x, y, attr: [a] })
+        };
+        assert!(rasterize(&tri(ATTR_LIMIT), clip, false, |_| ()).is_some());
+        assert!(rasterize(&tri(ATTR_LIMIT + 1), clip, false, |_| ()).is_none());
+    }
+
+    /// The example from the docs of `RasterVertex`.
+    #[test]
+    fn doc_raster_vertex() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex};
+        // One attribute, 0 at the left and 1600 at the right (16 pixels on):
+        // 100 units per pixel along x.
+        let v = [(0, 0, 0), (0, 256, 0), (256, 0, 1600)].map(|(x, y, a)| RasterVertex {
+            x,
+            y,
+            attr: [a],
+        });
+        let mut first = None;
+        rasterize(&v, ClipRect::of_size(16, 16).unwrap(), false, |s| {
+            first.get_or_insert((s.start[0], s.step[0]));
+        });
+        assert_eq!(first, Some((50, 100))); // pixel (0, 0)'s centre is half a pixel in
+    }
+
+    /// The example from the docs of `ClipRect`.
+    #[test]
+    fn doc_clip_rect() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex};
+        let v = [(0, 0), (0, 4096), (4096, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+        let clip = ClipRect {
+            x0: 2,
+            y0: 3,
+            x1: 5,
+            y1: 4,
+        };
+        let mut rows = Vec::new();
+        rasterize(&v, clip, false, |s| rows.push((s.y, s.x0, s.x1)));
+        assert_eq!(rows, [(3, 2, 5), (4, 2, 5)]); // nothing outside the rectangle
+    }
+
+    /// The example from the docs of `CLIP_LIMIT`.
+    #[test]
+    fn doc_clip_limit() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex, CLIP_LIMIT};
+        let v = [(0, 0), (0, 64), (64, 0)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+        let huge = ClipRect {
+            x0: 0,
+            y0: 0,
+            x1: CLIP_LIMIT as i32,
+            y1: 0,
+        };
+        assert!(rasterize(&v, huge, false, |_| ()).is_none()); // refused, not drawn
+        let fits = ClipRect {
+            x1: CLIP_LIMIT as i32 - 1,
+            ..huge
+        };
+        assert!(rasterize(&v, fits, false, |_| ()).is_some());
+    }
+
+    /// The example from the docs of `ClipRect::within_limits`.
+    #[test]
+    fn doc_clip_rect_within_limits() {
+        use crate::rasterizer::{ClipRect, CLIP_LIMIT};
+        assert!(ClipRect::of_size(320, 240).unwrap().within_limits());
+        assert!(ClipRect::of_size(CLIP_LIMIT as u32, 1)
+            .unwrap()
+            .within_limits());
+        assert!(!ClipRect::of_size(CLIP_LIMIT as u32 + 1, 1)
+            .unwrap()
+            .within_limits());
+    }
+
+    /// The example from the docs of `ClipRect::of_size`.
+    #[test]
+    fn doc_clip_rect_of_size() {
+        use crate::rasterizer::ClipRect;
+        assert_eq!(
+            ClipRect::of_size(320, 240),
+            Some(ClipRect {
+                x0: 0,
+                y0: 0,
+                x1: 319,
+                y1: 239
+            })
+        );
+        assert_eq!(ClipRect::of_size(0, 240), None);
+    }
+
+    /// The example from the docs of `Facing`.
+    #[test]
+    fn doc_facing() {
+        use crate::rasterizer::{rasterize, ClipRect, Facing, RasterVertex};
+        let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+        let clip = ClipRect::of_size(16, 16).unwrap();
+        let back = [v[0], v[2], v[1]];
+        assert_eq!(rasterize(&v, clip, true, |_| ()), Some(Facing::Front));
+        assert_eq!(rasterize(&back, clip, false, |_| ()), Some(Facing::Back)); // kept: no culling
+        assert_eq!(rasterize(&back, clip, true, |_| ()), None); // culled
+    }
+
+    /// The example from the docs of `Span`.
+    #[test]
+    fn doc_span() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex};
+        // attr = 10·x_px + 1000·y_px at pixel centres.
+        let v = [(0, 0, 0), (0, 512, 32_000), (512, 0, 320)].map(|(x, y, a)| RasterVertex {
+            x,
+            y,
+            attr: [a],
+        });
+        rasterize(&v, ClipRect::of_size(32, 32).unwrap(), false, |s| {
+            let at = |x: i32| 10 * x as i64 + 1000 * s.y as i64 + 505;
+            assert_eq!(s.start[0], at(s.x0));
+            assert_eq!(s.start[0] + (s.x1 - s.x0) as i64 * s.step[0], at(s.x1));
+        });
+    }
+
+    /// The example from the docs of `DRIFT`.
+    #[test]
+    fn doc_drift() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex, DRIFT};
+        let v = [(3, 5, 0), (90, 1000, 77_777), (1700, 40, -12_345)]
+            .map(|(x, y, a)| RasterVertex { x, y, attr: [a] });
+        rasterize(&v, ClipRect::of_size(128, 128).unwrap(), false, |s| {
+            for k in 0..=(s.x1 - s.x0) as i64 {
+                let a = s.start[0] + k * s.step[0];
+                let d = DRIFT + (k + 1) / 2;
+                assert!((-12_345 - d..=77_777 + d).contains(&a));
+            }
+        });
+    }
+
+    /// The example from the docs of `rasterize`.
+    #[test]
+    fn doc_rasterize() {
+        use crate::rasterizer::{rasterize, ClipRect, RasterVertex};
+        let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+        let mut pixels = 0;
+        rasterize(&v, ClipRect::of_size(16, 16).unwrap(), true, |s| {
+            pixels += s.x1 - s.x0 + 1
+        });
+        assert!(pixels > 50);
+    }
+
+    /// The example from the docs of `rasterize_rows`.
+    #[test]
+    fn doc_rasterize_rows() {
+        use crate::rasterizer::{rasterize_rows, ClipRect, RasterVertex};
+        let v = [(8, 8), (8, 200), (200, 8)].map(|(x, y)| RasterVertex { x, y, attr: [] });
+        let mut rows = Vec::new();
+        rasterize_rows(&v, ClipRect::of_size(16, 16).unwrap(), (4, 5), true, |s| {
+            rows.push(s.y)
+        });
+        assert_eq!(rows, [4, 5]);
     }
 }

@@ -27,22 +27,29 @@
 //! and for triangles that cross the near plane; the whole frame and the
 //! band renderer decide it in the same place (`Frame::triangle`). Where
 //! such a sliver lies inside a surface, its neighbours overlap across it
-//! once snapped, and the pixel centres under it are covered twice (README,
+//! once snapped, and the pixel centres under it are covered twice (docs/ACCURACY.md,
 //! "Stiff and extreme cases").
 //!
 //! Output goes through [`DrawTarget::fill_contiguous`], one call per span
-//! (or per run of pixels that pass the depth test), never per pixel.
+//! (or per run of pixels that pass the depth test), never per pixel; a
+//! [`Framebuffer`] is written in place.
 //!
 //! # Cost selection
-//! The shading mode ([`Flat`], [`Gouraud`], [`PhongShading`]) and the depth
-//! test ([`NoDepth`] or [`DepthBuffer`](crate::depth::DepthBuffer)) are type
-//! parameters of [`Renderer::draw`]: a mode or a depth test a scene does
-//! not use is not compiled.
+//! The shading mode ([`Flat`], [`Gouraud`], [`PhongShading`],
+//! [`Renderer::with_shading`]) and the depth test (none, a
+//! [`DepthBuffer`](crate::depth::DepthBuffer) or a
+//! [`DepthBand`](crate::depth::DepthBand), [`Shaded::with_depth`]) are
+//! values whose types select the code of [`Shaded::draw`]: a mode or a
+//! depth test a scene does not use is not compiled.
+//!
+//! [`Renderer::with_shading`]: crate::Renderer::with_shading
+//! [`Shaded::with_depth`]: crate::Shaded::with_depth
+//! [`Shaded::draw`]: crate::Shaded::draw
 //!
 //! # Stack
 //! No recursion, no heap; the stack is bounded by the set-up triangles and
 //! clip polygons of one triangle at a time. It is measured by painting it
-//! (README, "Memory"; `scripts/firmware.sh` on the Cortex-M cores).
+//! (`scripts/firmware.sh` on the Cortex-M cores; docs/PERFORMANCE.md).
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::OriginDimensions;
@@ -51,6 +58,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::{Point, RawData, Size};
 use embedded_graphics::primitives::Rectangle;
 
+use crate::band::VertexMode;
 use crate::camera::{Camera, CameraError, ProjectionCoeffs};
 use crate::color::{Rgb, Shade};
 use crate::depth::DepthTest;
@@ -93,33 +101,23 @@ pub enum ShadingKind {
 /// A shading mode, chosen by type: [`Flat`], [`Gouraud`] or
 /// [`PhongShading`].
 ///
-/// The mode is a type parameter of the draw calls, so that a program that
-/// draws in one mode compiles only that mode's span code:
+/// The mode is a value ([`Renderer::with_shading`](crate::Renderer::with_shading))
+/// whose type selects the span code, so that a program that draws in one
+/// mode compiles only that mode's:
 ///
 /// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Flat, NoDepth, PhongShading};
+/// let renderer = Renderer::new(&camera, &Material::new(), &sun);
 /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
-/// let mut cache = [CachedVertex::default(); 3];
 /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
-/// renderer.draw_framebuffer::<Flat, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// MESH.shaded(&renderer.with_shading(Flat)).draw(&mut fb).unwrap();
 /// let mut fb = Framebuffer::new(&mut b, 32, 32).unwrap();
-/// renderer.draw_framebuffer::<PhongShading, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// MESH.shaded(&renderer.with_shading(PhongShading)).draw(&mut fb).unwrap();
 /// // A flat triangle with equal vertex normals: every mode agrees.
 /// assert_eq!(a, b);
 /// ```
@@ -132,27 +130,16 @@ pub trait ShadingMode {
 /// normal (SPEC.md 4).
 ///
 /// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Flat, NoDepth};
+/// let renderer = Renderer::new(&camera, &Material::new(), &sun).with_shading(Flat);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut cache = [CachedVertex::default(); 3];
-/// renderer.draw_framebuffer::<Flat, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// MESH.shaded(&renderer).draw(&mut fb).unwrap();
 /// // One colour for the whole triangle.
 /// let lit: Vec<u16> = px.iter().copied().filter(|&p| p != 0).collect();
 /// assert!(lit.len() > 50 && lit.iter().all(|&p| p == lit[0]));
@@ -166,31 +153,20 @@ impl ShadingMode for Flat {
 /// Gouraud shading: the equation per vertex, colours interpolated with
 /// integer arithmetic (16 fractional bits below the RGB565 step; 11, 10
 /// for green, on spans of at least [`PAIR_SPAN`] pixels, see
-/// [`crate::span`]).
+/// `src/span.rs`).
 ///
 /// ```
-/// use embedded_graphics::{pixelcolor::{raw::RawU16, Rgb565}, prelude::*};
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// use embedded_graphics::{pixelcolor::raw::RawU16, prelude::*};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z, PackedNormal::Z, PackedNormal::Y];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Gouraud, NoDepth};
+/// let renderer = Renderer::new(&camera, &Material::new(), &sun); // Gouraud by default
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut cache = [CachedVertex::default(); 3];
-/// renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// MESH.shaded(&renderer).draw(&mut fb).unwrap();
 /// // The top vertex's normal faces away from the light: darker towards it.
 /// let green = |x: usize, y: usize| Rgb565::from(RawU16::new(px[y * 32 + x])).g();
 /// assert!(green(16, 10) < green(16, 20));
@@ -205,28 +181,17 @@ impl ShadingMode for Gouraud {
 /// renormalised and the equation evaluated per pixel.
 ///
 /// ```
-/// use embedded_graphics::{pixelcolor::{raw::RawU16, Rgb565}, prelude::*};
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// use embedded_graphics::{pixelcolor::raw::RawU16, prelude::*};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z, PackedNormal::Z, PackedNormal::Y];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{NoDepth, PhongShading};
+/// let renderer = Renderer::new(&camera, &Material::new(), &sun).with_shading(PhongShading);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut cache = [CachedVertex::default(); 3];
-/// renderer.draw_framebuffer::<PhongShading, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
+/// MESH.shaded(&renderer).draw(&mut fb).unwrap();
 /// let green = |x: usize, y: usize| Rgb565::from(RawU16::new(px[y * 32 + x])).g();
 /// assert!(green(16, 10) < green(16, 20));
 /// ```
@@ -269,30 +234,18 @@ impl Default for RenderOptions {
 /// [`RenderError::Target`].
 ///
 /// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::depth::DepthBuffer;
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Gouraud, RenderError};
+/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut zs = [u16::MAX; 16 * 16];
+/// let mut zs = [0u16; 16 * 16];
 /// let mut depth = DepthBuffer::new(&mut zs, 16, 16).unwrap(); // smaller than the target
-/// let mut cache = [CachedVertex::default(); 3];
-/// let e = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut depth, &mut cache);
+/// let e = MESH.shaded(&renderer).with_depth(&mut depth).draw(&mut fb);
 /// assert_eq!(e, Err(RenderError::DepthTooSmall));
 /// assert!(px.iter().all(|&p| p == 0)); // nothing drawn
 /// ```
@@ -304,8 +257,12 @@ pub enum RenderError<E> {
     Camera(CameraError),
     /// The vertex cache is shorter than the mesh's vertex count.
     CacheTooSmall,
+    /// The mesh has no normals, and Gouraud or Phong shading needs them
+    /// (compute them with [`vertex_normals`](crate::mesh::vertex_normals),
+    /// or draw it with [`Flat`] shading, which uses face normals).
+    NoNormals,
     /// The depth buffer is smaller than the target (or, for
-    /// [`Renderer::draw_bands`], than the band).
+    /// [`Bands`](crate::band::Bands), the depth band than the band).
     DepthTooSmall,
     /// The band renderer's colour band holds fewer than `width × h`
     /// pixels, or its height `h` is 0.
@@ -317,12 +274,47 @@ pub enum RenderError<E> {
     Target(E),
 }
 
+impl<E> RenderError<E> {
+    /// The target's own error apart (`Err`), or the renderer's (`Ok`).
+    pub(crate) fn split(self) -> Result<RenderError<core::convert::Infallible>, E> {
+        Ok(match self {
+            RenderError::Mesh(m) => RenderError::Mesh(m),
+            RenderError::Camera(c) => RenderError::Camera(c),
+            RenderError::CacheTooSmall => RenderError::CacheTooSmall,
+            RenderError::NoNormals => RenderError::NoNormals,
+            RenderError::DepthTooSmall => RenderError::DepthTooSmall,
+            RenderError::BandTooSmall => RenderError::BandTooSmall,
+            RenderError::TargetTooLarge => RenderError::TargetTooLarge,
+            RenderError::Target(e) => return Err(e),
+        })
+    }
+}
+
+impl RenderError<core::convert::Infallible> {
+    /// An error of a sink that cannot fail (memory) as another target's.
+    pub(crate) fn lift<E>(self) -> RenderError<E> {
+        match self {
+            RenderError::Mesh(m) => RenderError::Mesh(m),
+            RenderError::Camera(c) => RenderError::Camera(c),
+            RenderError::CacheTooSmall => RenderError::CacheTooSmall,
+            RenderError::NoNormals => RenderError::NoNormals,
+            RenderError::DepthTooSmall => RenderError::DepthTooSmall,
+            RenderError::BandTooSmall => RenderError::BandTooSmall,
+            RenderError::TargetTooLarge => RenderError::TargetTooLarge,
+            RenderError::Target(e) => match e {},
+        }
+    }
+}
+
 impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             RenderError::Mesh(e) => write!(f, "mesh: {e}"),
             RenderError::Camera(e) => write!(f, "camera: {e}"),
             RenderError::CacheTooSmall => f.write_str("vertex cache shorter than the vertex count"),
+            RenderError::NoNormals => {
+                f.write_str("mesh without normals (Gouraud and Phong shading need them)")
+            }
             RenderError::DepthTooSmall => f.write_str("depth buffer smaller than the target"),
             RenderError::BandTooSmall => f.write_str("colour band smaller than width x height"),
             RenderError::TargetTooLarge => {
@@ -339,28 +331,16 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
 /// 2²⁰ pixels, or one cut in many bands, can pass it).
 ///
 /// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Gouraud, NoDepth};
+/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut cache = [CachedVertex::default(); 3];
-/// let s = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache);
-/// let s = s.unwrap();
+/// let s = MESH.shaded(&renderer).draw(&mut fb).unwrap();
 /// assert_eq!((s.triangles, s.drawn, s.clipped, s.lit), (1, 1, 0, 3));
 /// assert_eq!(s.pixels as usize, px.iter().filter(|&&p| p != 0).count());
 /// ```
@@ -396,23 +376,15 @@ type PixelBox = ((i32, i32), (i32, i32), bool);
 /// The largest target side in pixels.
 ///
 /// ```
-/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// use embedded_graphics::prelude::*;
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::render::{Gouraud, NoDepth, RenderError, MAX_TARGET_SIDE};
+/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
+/// use fixshade::render::MAX_TARGET_SIDE;
 /// // A target that only reports its size (it is never drawn into).
 /// struct Wide;
 /// impl OriginDimensions for Wide {
@@ -427,8 +399,7 @@ type PixelBox = ((i32, i32), (i32, i32), bool);
 ///         Err(())
 ///     }
 /// }
-/// let mut cache = [CachedVertex::default(); 3];
-/// let e = renderer.draw::<Gouraud, _, _>(&mesh, &mut Wide, &mut NoDepth, &mut cache);
+/// let e = MESH.shaded(&renderer).draw(&mut Wide);
 /// assert_eq!(e, Err(RenderError::TargetTooLarge));
 /// ```
 pub const MAX_TARGET_SIDE: u32 = 1 << 20;
@@ -453,38 +424,11 @@ fn tile(len: i32, at: i32) -> (i32, i32, i32) {
     }
 }
 
-/// A frame's renderer: camera, model transform, prepared lighting and
-/// options.
-///
-/// ```
-/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-/// use fixshade::camera::Camera;
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::illumination::InfiniteViewer;
-/// use fixshade::light::DirectionalLight;
-/// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
-/// use fixshade::{Mat4, Material, Rgb};
-///
-/// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
-/// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-/// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-/// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-/// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// let renderer = Renderer::<_, InfiniteViewer, _>::new(
-///     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// );
-/// let mut px = [0u16; 32 * 32];
-/// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut cache = [CachedVertex::default(); 3];
-/// let stats = renderer.draw::<Gouraud, _, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
-/// assert!(stats.pixels > 50);
-/// assert_eq!(fb.pixel(16, 16), Some(Rgb565::new(25, 50, 25))); // 0.8 diffuse
-/// ```
+/// A draw's prepared constants: camera, model-view and normal matrices,
+/// lighting in eye space and options ([`crate::Renderer`] makes one a
+/// draw).
 #[derive(Clone, Debug)]
-pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
+pub struct Prepared<S: Specular, V: Viewer, L: LightSet> {
     lighting: Lighting<S, V, L>,
     camera: Camera,
     modelview: Mat4,
@@ -492,53 +436,19 @@ pub struct Renderer<S: Specular, V: Viewer, L: LightSet> {
     options: RenderOptions,
 }
 
-impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
-    /// Prepares a frame: lights to eye space, model-view and normal
-    /// matrices. A singular model matrix gives zero normals (lit by
-    /// `E + A·Ka` only).
-    ///
-    /// ```
-    /// use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
-    /// use fixshade::camera::Camera;
-    /// use fixshade::framebuffer::Framebuffer;
-    /// use fixshade::illumination::InfiniteViewer;
-    /// use fixshade::light::DirectionalLight;
-    /// use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// use fixshade::render::{CachedVertex, Gouraud, NoDepth, RenderOptions, Renderer};
-    /// use fixshade::{Mat4, Material, Rgb};
-    /// // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
-    /// static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let glow = Material::new().with_emission(Rgb::grey_f32(0.5).unwrap());
-    /// // Flattens z: singular, though the triangle (at z = 0) keeps its shape.
-    /// let m = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0; 4], [0.0, 0.0, 0.0, 1.0]];
-    /// let squash = Mat4::from_f32(m).unwrap();
-    /// let r = Renderer::<_, InfiniteViewer, _>::new(
-    ///     &camera, squash, &glow, Rgb::BLACK, &sun, RenderOptions::default(),
-    /// );
-    /// let mut px = [0u16; 32 * 32];
-    /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-    /// let mut cache = [CachedVertex::default(); 3];
-    /// let s = r.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
-    /// // No normal survives it: the sun adds nothing to the emission.
-    /// let e = RawU16::from(r.lighting().ambient().to_rgb565()).into_inner();
-    /// assert!(s.pixels > 50 && e != 0);
-    /// assert!(px.iter().all(|&p| p == 0 || p == e));
-    /// ```
-    pub fn new(
+impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
+    /// Lights to eye space, model-view and normal matrices. A singular
+    /// model matrix gives zero normals (lit by `E + A·Ka` only).
+    pub(crate) fn new(
         camera: &Camera,
-        model: Mat4,
+        model: &Mat4,
         material: &Material<S>,
         global_ambient: Rgb,
         lights: &L,
         options: RenderOptions,
     ) -> Self {
-        let modelview = camera.view.mul(&model);
-        Renderer {
+        let modelview = camera.view.mul(model);
+        Prepared {
             lighting: Lighting::new(material, global_ambient, lights, &camera.view),
             camera: *camera,
             modelview,
@@ -548,174 +458,81 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     }
 
     /// The prepared illumination equation.
-    ///
-    /// ```
-    /// # use fixshade::camera::Camera;
-    /// # use fixshade::illumination::InfiniteViewer;
-    /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb, Unit3, Vec3};
-    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-    /// # );
-    /// use fixshade::Shade;
-    /// // A surface facing the light (0.8 diffuse, no ambient).
-    /// let s = renderer.lighting().shade(Vec3::ZERO, Unit3::Z);
-    /// assert_ne!(s, Shade::BLACK);
-    /// assert_eq!(renderer.lighting().ambient(), Shade::BLACK);
-    /// ```
-    pub fn lighting(&self) -> &Lighting<S, V, L> {
+    pub(crate) fn lighting(&self) -> &Lighting<S, V, L> {
         &self.lighting
     }
 
     /// The render switches.
-    ///
-    /// ```
-    /// # use fixshade::camera::Camera;
-    /// # use fixshade::illumination::InfiniteViewer;
-    /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb};
-    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-    /// # );
-    /// assert_eq!(renderer.options(), RenderOptions::default());
-    /// ```
-    pub fn options(&self) -> RenderOptions {
+    pub(crate) fn options(&self) -> RenderOptions {
         self.options
     }
 
-    /// Draws `mesh` into `target` with shading mode `M` and depth test `D`.
-    ///
-    /// `cache` needs one [`CachedVertex`] per mesh vertex. The target's
-    /// bounding box is the viewport (SPEC.md 1); no pixel outside it is
-    /// sent. Clearing the target and the depth buffer is the caller's.
-    ///
-    /// ```
-    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};
-    /// # use fixshade::camera::Camera;
-    /// # use fixshade::illumination::InfiniteViewer;
-    /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb};
-    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-    /// # );
-    /// use fixshade::render::{Gouraud, NoDepth};
-    /// // MockDisplay (64 × 64) panics on a pixel drawn twice or out of bounds.
-    /// let mut display = MockDisplay::<Rgb565>::new();
-    /// let mut cache = [CachedVertex::default(); 3];
-    /// let s = renderer.draw::<Gouraud, _, _>(&mesh, &mut display, &mut NoDepth, &mut cache);
-    /// let drawn = (0..64)
-    ///     .flat_map(|y| (0..64).map(move |x| Point::new(x, y)))
-    ///     .filter(|&p| display.get_pixel(p).is_some())
-    ///     .count();
-    /// assert_eq!(s.unwrap().pixels as usize, drawn);
-    /// ```
-    pub fn draw<M, T, D>(
+    /// Draws `mesh` into the target `T` through `DrawTarget` (one
+    /// `fill_contiguous` per span).
+    pub(crate) fn draw_target<M, T, D, X>(
         &self,
         mesh: &Mesh,
         target: &mut T,
         depth: &mut D,
-        cache: &mut [CachedVertex],
+        vertices: &mut X,
     ) -> Result<DrawStats, RenderError<T::Error>>
     where
         M: ShadingMode,
         T: DrawTarget<Color = Rgb565>,
         D: DepthTest,
+        X: VertexMode,
     {
         let bb = target.bounding_box();
         let mut sink = TargetSink {
             target,
             origin: bb.top_left,
         };
-        self.draw_into::<M, _, D>(mesh, &mut sink, bb, depth, cache)
+        self.draw_into::<M, _, D, X>(mesh, &mut sink, bb, depth, vertices)
     }
 
-    /// As [`Renderer::draw`], into a [`Framebuffer`] written in place: the
-    /// fast path (no `fill_contiguous` call per span). The pixels are the
-    /// same.
-    ///
-    /// ```
-    /// # use fixshade::camera::Camera;
-    /// # use fixshade::illumination::InfiniteViewer;
-    /// # use fixshade::light::DirectionalLight;
-    /// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-    /// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-    /// # use fixshade::{Mat4, Material, Rgb};
-    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
-    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-    /// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-    /// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
-    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-    /// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-    /// # );
-    /// use fixshade::framebuffer::Framebuffer;
-    /// use fixshade::render::{Gouraud, NoDepth};
-    /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
-    /// let mut cache = [CachedVertex::default(); 3];
-    /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
-    /// renderer.draw::<Gouraud, _, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
-    /// let mut fb = Framebuffer::new(&mut b, 32, 32).unwrap();
-    /// renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut cache).unwrap();
-    /// assert_eq!(a, b); // the same pixels as through `DrawTarget`
-    /// ```
-    pub fn draw_framebuffer<M, D>(
+    /// As [`Prepared::draw_target`], into a [`Framebuffer`] written in
+    /// place: the fast path (no `fill_contiguous` call per span). The
+    /// pixels are the same.
+    pub(crate) fn draw_framebuffer<M, D, X>(
         &self,
         mesh: &Mesh,
         fb: &mut Framebuffer,
         depth: &mut D,
-        cache: &mut [CachedVertex],
+        vertices: &mut X,
     ) -> Result<DrawStats, RenderError<core::convert::Infallible>>
     where
         M: ShadingMode,
         D: DepthTest,
+        X: VertexMode,
     {
         let bb = Rectangle::new(Point::zero(), fb.size());
-        self.draw_into::<M, _, D>(mesh, &mut FramebufferSink { fb }, bb, depth, cache)
+        self.draw_into::<M, _, D, X>(mesh, &mut FramebufferSink { fb }, bb, depth, vertices)
     }
 
-    fn draw_into<M, P, D>(
+    fn draw_into<M, P, D, X>(
         &self,
         mesh: &Mesh,
         sink: &mut P,
         bb: Rectangle,
         depth: &mut D,
-        cache: &mut [CachedVertex],
+        vertices: &mut X,
     ) -> Result<DrawStats, RenderError<P::Error>>
     where
         M: ShadingMode,
         P: PixelSink,
         D: DepthTest,
+        X: VertexMode,
     {
         mesh.validate().map_err(RenderError::Mesh)?;
+        if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
+            return Err(RenderError::NoNormals);
+        }
         let n = mesh.positions.len();
-        if cache.len() < n {
+        let cache = vertices.cache();
+        if X::CACHED && cache.len() < n {
             return Err(RenderError::CacheTooSmall);
         }
+        let cache = &mut cache[..if X::CACHED { n } else { 0 }];
         let size = bb.size;
         let (w, h) = (size.width, size.height);
         check_bounds(&bb)?;
@@ -740,11 +557,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
         // Every vertex projected up front: a mesh's vertices are (nearly)
         // all used, and the triangle loop then tests no flag (callgrind,
         // S3 on x86-64: 0.17 M instructions a frame).
-        frame.project_all(&mut cache[..n]);
+        if X::CACHED {
+            frame.project_all(cache);
+        }
         frame.each_tile(|frame| {
             for tri in mesh.indices {
                 let idx = tri.map(|i| i as usize);
-                frame.triangle::<M, P, D>(&mut Corners::of(cache, idx), sink, depth, &mut stats)?;
+                if X::CACHED {
+                    let mut c = Corners::of(cache, idx);
+                    frame.triangle::<M, P, D>(&mut c, sink, depth, &mut stats)?;
+                } else {
+                    let mut three = frame.project3(idx);
+                    let mut c = Corners::of_three(&mut three, idx);
+                    frame.triangle::<M, P, D>(&mut c, sink, depth, &mut stats)?;
+                }
             }
             Ok(())
         })?;
@@ -760,7 +586,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Renderer<S, V, L> {
     }
 
     /// The per-draw constants for a viewport of `size` at the origin,
-    /// drawing all its rows, `modelview` from [`Renderer::mesh_modelview`];
+    /// drawing all its rows, `modelview` from [`Prepared::mesh_modelview`];
     /// `None` for an empty viewport.
     pub(crate) fn frame<'a, 'm, E>(
         &'a self,
@@ -915,10 +741,10 @@ pub(crate) fn check_bounds<E>(bb: &Rectangle) -> Result<(), RenderError<E>> {
 
 /// Per-draw constants.
 pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
-    pub(crate) r: &'a Renderer<S, V, L>,
+    pub(crate) r: &'a Prepared<S, V, L>,
     pub(crate) mesh: &'a Mesh<'m>,
     /// The model-view matrix with the mesh's box folded in
-    /// ([`Renderer::mesh_modelview`]), by reference: a pointer, not 64
+    /// ([`Prepared::mesh_modelview`]), by reference: a pointer, not 64
     /// bytes, in the struct the triangle loop reads.
     pub(crate) modelview: &'a Mat4,
     pub(crate) proj: ProjectionCoeffs,

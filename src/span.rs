@@ -57,18 +57,7 @@ use crate::platform;
 use crate::vector::{Unit3, Vec3};
 
 /// Where a span's pixels go.
-///
-/// ```
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{FramebufferSink, PixelSink};
-/// let mut px = [0u16; 4 * 2];
-/// let mut fb = Framebuffer::new(&mut px, 4, 2).unwrap();
-/// let mut sink = FramebufferSink { fb: &mut fb };
-/// sink.fill(1, 1, 3, [5, 6, 7].into_iter()).unwrap();
-/// sink.row(0, 2, 2).unwrap().fill(9); // memory: written directly
-/// assert_eq!(px, [0, 0, 9, 9, 0, 5, 6, 7]);
-/// ```
-pub trait PixelSink {
+pub(crate) trait PixelSink {
     /// The sink's error.
     type Error;
     /// The raw pixels of row `y` from column `x0`, `n` of them, where the
@@ -86,23 +75,11 @@ pub trait PixelSink {
 
 /// Any `DrawTarget`: one `fill_contiguous` per run, at the target's origin
 /// offset.
-///
-/// ```
-/// use embedded_graphics::prelude::Point;
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{PixelSink, TargetSink};
-/// let mut px = [0u16; 6];
-/// let mut fb = Framebuffer::new(&mut px, 6, 1).unwrap();
-/// let mut sink = TargetSink { target: &mut fb, origin: Point::new(2, 0) };
-/// assert!(sink.row(0, 0, 1).is_none()); // no direct memory: always `fill`
-/// sink.fill(0, 1, 2, [4, 5].into_iter()).unwrap(); // column 1 of the box is 3
-/// assert_eq!(px, [0, 0, 0, 4, 5, 0]);
-/// ```
-pub struct TargetSink<'t, T> {
+pub(crate) struct TargetSink<'t, T> {
     /// The target.
-    pub target: &'t mut T,
+    pub(crate) target: &'t mut T,
     /// The target's bounding box's top-left corner.
-    pub origin: Point,
+    pub(crate) origin: Point,
 }
 
 impl<T: DrawTarget<Color = Rgb565>> PixelSink for TargetSink<'_, T> {
@@ -136,21 +113,9 @@ impl<T: DrawTarget<Color = Rgb565>> PixelSink for TargetSink<'_, T> {
 }
 
 /// A [`Framebuffer`], written in place.
-///
-/// ```
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{FramebufferSink, PixelSink};
-/// let mut px = [0u16; 4];
-/// let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
-/// let mut sink = FramebufferSink { fb: &mut fb };
-/// assert_eq!(sink.row(0, 1, 3).map(|r| r.len()), Some(3));
-/// assert!(sink.row(0, 2, 3).is_none()); // spans must be clipped to the framebuffer
-/// sink.fill(0, 2, 3, [1, 2, 3].into_iter()).unwrap(); // so this one writes nothing
-/// assert_eq!(px, [0; 4]);
-/// ```
-pub struct FramebufferSink<'t, 'a> {
+pub(crate) struct FramebufferSink<'t, 'a> {
     /// The framebuffer.
-    pub fb: &'t mut Framebuffer<'a>,
+    pub(crate) fb: &'t mut Framebuffer<'a>,
 }
 
 impl PixelSink for FramebufferSink<'_, '_> {
@@ -179,22 +144,13 @@ impl PixelSink for FramebufferSink<'_, '_> {
 /// A colour band in memory: rows `y0 ..` of a `width`-pixel-wide viewport,
 /// row-major, written in place (the band renderer's sink, with the same
 /// fast path as [`FramebufferSink`]).
-///
-/// ```
-/// use fixshade::span::{BandSink, PixelSink};
-/// let mut px = [0u16; 4 * 2];
-/// let mut sink = BandSink { buf: &mut px, width: 4, y0: 10 };
-/// sink.row(11, 1, 2).unwrap().fill(7);
-/// assert!(sink.row(9, 0, 1).is_none());
-/// assert_eq!(px, [0, 0, 0, 0, 0, 7, 7, 0]);
-/// ```
-pub struct BandSink<'b> {
+pub(crate) struct BandSink<'b> {
     /// The band's pixels (raw RGB565), `width` per row.
-    pub buf: &'b mut [u16],
+    pub(crate) buf: &'b mut [u16],
     /// Row length in pixels.
-    pub width: u32,
+    pub(crate) width: u32,
     /// The viewport row of the band's first row.
-    pub y0: i32,
+    pub(crate) y0: i32,
 }
 
 impl PixelSink for BandSink<'_> {
@@ -231,23 +187,7 @@ impl PixelSink for BandSink<'_> {
 }
 
 /// Makes the colours of a span's pixels, left to right.
-///
-/// ```
-/// use fixshade::span::SpanShader;
-/// struct Count(u16); // colour = the pixel's index + 1
-/// impl SpanShader for Count {
-///     fn next(&mut self) -> u16 { self.0 += 1; self.0 }
-///     fn skip(&mut self, n: u32) { self.0 += n as u16 }
-/// }
-/// let mut row = [0u16; 4];
-/// Count(0).fill_row(&mut row);
-/// assert_eq!(row, [1, 2, 3, 4]);
-/// // Depth 0x10 at every pixel: the pixel whose stored depth is nearer keeps its colour.
-/// let (mut row, mut drow) = ([0u16; 4], [u16::MAX, 0x10, u16::MAX, u16::MAX]);
-/// assert_eq!(Count(0).depth_row(&mut row, &mut drow, 0x10 << 8, 0), 3);
-/// assert_eq!((row, drow), ([1, 0, 3, 4], [0x10; 4]));
-/// ```
-pub trait SpanShader {
+pub(crate) trait SpanShader {
     /// The colour of the current pixel (raw RGB565); moves to the next.
     fn next(&mut self) -> u16;
     /// Moves `n` pixels on without making colours.
@@ -320,20 +260,8 @@ fn depth_inside(z: i64, dz: i64, len: usize) -> Option<(i32, i32)> {
 
 /// [`SpanShader::depth_row`] a pixel at a time with the depth clamped to
 /// `u16` at every pixel: a pixel that fails costs no colour.
-///
-/// ```
-/// use fixshade::span::{depth_row_pixels, FlatShader};
-/// let mut sh = FlatShader { plain: 7, shade: Default::default(), dither: false, x: 0, y: 0 };
-/// // Depths -2, -1, 0, 1 (in units of 2⁸) clamp to 0, 0, 0, 1.
-/// let (mut row, mut drow) = ([0u16; 4], [1u16; 4]);
-/// assert_eq!(depth_row_pixels(&mut sh, &mut row, &mut drow, -2 << 8, 1 << 8), 3);
-/// assert_eq!((row, drow), ([7, 7, 7, 0], [0, 0, 0, 1]));
-/// // Past the far end: clamped to 65535, never in front of a cleared buffer.
-/// let mut drow = [u16::MAX; 4];
-/// assert_eq!(depth_row_pixels(&mut sh, &mut row, &mut drow, 1 << 40, 0), 0);
-/// ```
 #[inline(always)]
-pub fn depth_row_pixels<S: SpanShader>(
+pub(crate) fn depth_row_pixels<S: SpanShader>(
     sh: &mut S,
     row: &mut [u16],
     drow: &mut [u16],
@@ -359,29 +287,17 @@ pub fn depth_row_pixels<S: SpanShader>(
 }
 
 /// One colour for the whole span, or a dithered one.
-///
-/// ```
-/// use fixshade::span::{dither_shade, FlatShader, SpanShader};
-/// use fixshade::Shade;
-/// let shade = Shade::from_bits(1 << 15, 1 << 15, 1 << 15);
-/// let mut sh = FlatShader { plain: 0x8410, shade, dither: false, x: 5, y: 2 };
-/// assert_eq!([sh.next(), sh.next()], [0x8410; 2]);
-/// sh.dither = true;
-/// sh.skip(3); // now at column 10
-/// assert_eq!(sh.next(), dither_shade(shade, 10, 2));
-/// assert_eq!(sh.next(), dither_shade(shade, 11, 2));
-/// ```
-pub struct FlatShader {
+pub(crate) struct FlatShader {
     /// The undithered colour.
-    pub plain: u16,
+    pub(crate) plain: u16,
     /// The shade, for dithering.
-    pub shade: Shade,
+    pub(crate) shade: Shade,
     /// Dithering on.
-    pub dither: bool,
+    pub(crate) dither: bool,
     /// Current column and row (for the dither pattern).
-    pub x: i32,
+    pub(crate) x: i32,
     /// Row.
-    pub y: i32,
+    pub(crate) y: i32,
 }
 
 impl SpanShader for FlatShader {
@@ -403,16 +319,7 @@ impl SpanShader for FlatShader {
 }
 
 /// 4 × 4 Bayer thresholds, `(m + ½)/16` in `Q.16`.
-///
-/// ```
-/// use fixshade::span::BAYER;
-/// let mut t: Vec<u32> = BAYER.iter().flatten().copied().collect();
-/// t.sort();
-/// // Every m in 0 .. 16 once: thresholds 1/32, 3/32, .., 31/32, averaging ½.
-/// assert!(t.iter().enumerate().all(|(m, &v)| v == (2 * m as u32 + 1) << 11));
-/// assert_eq!(BAYER[0][0], 1 << 11);
-/// ```
-pub const BAYER: [[u32; 4]; 4] = {
+pub(crate) const BAYER: [[u32; 4]; 4] = {
     const M: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
     let mut out = [[0u32; 4]; 4];
     let mut y = 0;
@@ -429,20 +336,8 @@ pub const BAYER: [[u32; 4]; 4] = {
 
 /// A shade quantised with ordered dithering at `(x, y)`: `⌊v·31 + t⌋` with
 /// the Bayer threshold `t` in place of ½ (SPEC.md 6).
-///
-/// ```
-/// use fixshade::span::dither_shade;
-/// use fixshade::Shade;
-/// // Grey ½: 15.5 levels of red and blue, 31.5 of green.
-/// let half = Shade::from_bits(1 << 15, 1 << 15, 1 << 15);
-/// let tile: Vec<u16> = (0..16).map(|i| dither_shade(half, i % 4, i / 4)).collect();
-/// assert_eq!(tile.iter().filter(|&&p| p == (16 << 11 | 32 << 5 | 16)).count(), 8);
-/// assert_eq!(tile.iter().filter(|&&p| p == (15 << 11 | 31 << 5 | 15)).count(), 8);
-/// // Full channels stay full (no level past 31 or 63).
-/// assert_eq!(dither_shade(Shade::from_bits(1 << 16, 1 << 16, 1 << 16), 3, 3), 0xFFFF);
-/// ```
 #[inline]
-pub fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
+pub(crate) fn dither_shade(c: Shade, x: i32, y: i32) -> u16 {
     let t = BAYER[(y & 3) as usize][(x & 3) as usize];
     let b = c.to_bits();
     // v ≤ 2^16, v·63 + t < 2^23: no overflow.
@@ -499,6 +394,7 @@ fn pixel_by_halves(acc: u64) -> u16 {
 /// rasterizer gives passes both forms with the same value; they differ
 /// only on spans it cannot give. (The range tests on x86-64 cost S1 2 %,
 /// from code layout.)
+#[cfg(test)]
 #[inline]
 fn span_end(c: i64, d: i64, last: i64) -> Option<i64> {
     if platform::wide_pointer() {
@@ -511,21 +407,8 @@ fn span_end(c: i64, d: i64, last: i64) -> Option<i64> {
 }
 
 /// Gouraud colours stepped in one packed `u64` (see the module docs).
-///
-/// ```
-/// use fixshade::span::{PackedGouraud, SpanShader};
-/// let one = 1 << 16;
-/// // Green falls from 40.5 by ¾ per pixel (biased by ½); red and blue flat.
-/// let (c, d) = ([one / 2, 40 * one + one / 2, 31 * one], [0, -3 * one / 4, 0]);
-/// let mut sh = PackedGouraud::new(c, d, 9).unwrap();
-/// let mut row = [0u16; 9];
-/// sh.fill_row(&mut row);
-/// let green: Vec<u16> = row.iter().map(|p| p >> 5 & 63).collect();
-/// assert_eq!(green, [40, 39, 39, 38, 37, 36, 36, 35, 34]);
-/// assert!(row.iter().all(|p| p >> 11 == 0 && p & 31 == 31));
-/// ```
 #[derive(Clone, Debug)]
-pub struct PackedGouraud {
+pub(crate) struct PackedGouraud {
     acc: u64,
     step: u64,
 }
@@ -535,20 +418,9 @@ impl PackedGouraud {
     /// of the 5/6-bit values, biased by ½) start at `c` and step by `d`, or
     /// `None` if a channel leaves its field somewhere on the span (then the
     /// clamped shader must be used).
-    ///
-    /// ```
-    /// use fixshade::span::{PackedGouraud, PairGouraud};
-    /// let one = 1 << 16;
-    /// let (c, d) = ([31 * one, 0, 0], [one / 2, 0, 0]);
-    /// assert!(PackedGouraud::new(c, d, 2).is_some()); // red ends at 31.5
-    /// assert!(PackedGouraud::new(c, d, 3).is_none()); // red would reach 32
-    /// assert!(PackedGouraud::new([-1, 0, 0], [0; 3], 1).is_none());
-    /// // The fields' very ends are allowed, unlike PairGouraud's margin.
-    /// assert!(PackedGouraud::new([0; 3], [0; 3], 8).is_some());
-    /// assert!(PairGouraud::new([0; 3], [0; 3], 8).is_none());
-    /// ```
+    #[cfg(test)]
     #[inline]
-    pub fn new(c: [i64; 3], d: [i64; 3], n: u32) -> Option<PackedGouraud> {
+    pub(crate) fn new(c: [i64; 3], d: [i64; 3], n: u32) -> Option<PackedGouraud> {
         let last = n.saturating_sub(1) as i64;
         let lim = [32i64 << 16, 64 << 16, 32 << 16];
         for k in 0..3 {
@@ -625,20 +497,7 @@ impl SpanShader for PackedGouraud {
 /// rounding of the per-pair step adds at most `BLOCK_PAIRS/2` lane units
 /// (2⁻⁷ of an LSB for red and blue, 2⁻⁶ for green at 32) before it is
 /// dropped.
-///
-/// ```
-/// use fixshade::span::{PackedGouraud, PairGouraud, SpanShader, BLOCK_PAIRS};
-/// // A span of several blocks; steps that no lane holds exactly.
-/// let n = 6 * BLOCK_PAIRS + 7;
-/// let (c, d) = ([1 << 15, 1 << 16, 30 << 16], [7919, 13001, -9001]);
-/// let (mut exact, mut pairs) = (vec![0u16; n as usize], vec![0u16; n as usize]);
-/// PackedGouraud::new(c, d, n).unwrap().fill_row(&mut exact);
-/// PairGouraud::new(c, d, n).unwrap().fill_row(&mut pairs);
-/// let ch = |p: u16| [p >> 11, p >> 5 & 63, p & 31];
-/// let diff = |(a, b): (&u16, &u16)| (0..3).all(|k| ch(*a)[k].abs_diff(ch(*b)[k]) <= 1);
-/// assert!(exact.iter().zip(&pairs).all(diff)); // still at most 1 LSB at the span's end
-/// ```
-pub const BLOCK_PAIRS: u32 = 32;
+pub(crate) const BLOCK_PAIRS: u32 = 32;
 
 /// How far (in `Q.16`) a channel must stay inside its field for the lanes
 /// to stay inside theirs: a lane deviates from the exact value by at most
@@ -674,23 +533,8 @@ fn add_lanes(l: [u32; 3], s: [u32; 3]) -> [u32; 3] {
 
 /// Gouraud colours two pixels at a time in 16-bit lanes (see the module
 /// docs): per pair three 32-bit adds, three masks and two ors.
-///
-/// ```
-/// use fixshade::span::{PairGouraud, SpanShader};
-/// let one = 1 << 16;
-/// let (c, d) = ([one, 20 * one, 30 * one], [one / 3, one / 5, -one / 7]);
-/// let sh = PairGouraud::new(c, d, 40).unwrap();
-/// let mut row = [0u16; 40];
-/// sh.clone().fill_row(&mut row);
-/// // A pixel at a time, and skipping to an odd column, give the same pixels.
-/// let mut one_by_one = sh.clone();
-/// assert!(row.iter().all(|&p| p == one_by_one.next()));
-/// let mut skipped = sh;
-/// skipped.skip(37);
-/// assert_eq!([skipped.next(), skipped.next(), skipped.next()], row[37..]);
-/// ```
 #[derive(Clone, Debug)]
-pub struct PairGouraud {
+pub(crate) struct PairGouraud {
     /// The current pair's lane words (red, green, blue).
     lanes: [u32; 3],
     /// Their step per pair.
@@ -711,18 +555,9 @@ impl PairGouraud {
     /// `None` if a channel comes within `LANE_MARGIN` (about 2⁻⁶ of an LSB)
     /// of its field's ends
     /// somewhere on the span (then the clamped shader must be used).
-    ///
-    /// ```
-    /// use fixshade::span::{PairGouraud, SpanShader};
-    /// // Red from 0.5 to 30.5 (biased by ½) over 31 pixels, green and blue flat.
-    /// let one = 1 << 16;
-    /// let mut sh = PairGouraud::new([one / 2, 10 * one, 3 * one], [one, 0, 0], 31).unwrap();
-    /// let mut row = [0u16; 31];
-    /// sh.fill_row(&mut row);
-    /// assert!(row.iter().enumerate().all(|(x, &p)| p == (x as u16) << 11 | 10 << 5 | 3));
-    /// ```
+    #[cfg(test)]
     #[inline]
-    pub fn new(c: [i64; 3], d: [i64; 3], n: u32) -> Option<PairGouraud> {
+    pub(crate) fn new(c: [i64; 3], d: [i64; 3], n: u32) -> Option<PairGouraud> {
         let last = n.saturating_sub(1) as i64;
         let lim = [32i64 << 16, 64 << 16, 32 << 16];
         for k in 0..3 {
@@ -966,28 +801,17 @@ impl SpanShader for PairGouraud {
 
 /// Gouraud colours per channel with a clamp (slivers whose values leave
 /// the fields by rounding) and optional dithering.
-///
-/// ```
-/// use fixshade::span::{ClampedGouraud, SpanShader};
-/// let one = 1 << 16;
-/// // Red from 29.5 up by one a pixel, blue from 0.5 down: both leave their fields.
-/// let c = [29 * one + one / 2, 0, one / 2];
-/// let mut sh = ClampedGouraud { c, d: [one, 0, -one], dither: false, x: 0, y: 0 };
-/// let px: Vec<u16> = (0..4).map(|_| sh.next()).collect();
-/// assert_eq!(px, [29 << 11, 30 << 11, 31 << 11, 31 << 11]); // blue 0, 0, 0, 0
-/// assert_eq!(sh.x, 4);
-/// ```
-pub struct ClampedGouraud {
+pub(crate) struct ClampedGouraud {
     /// Current scaled channels.
-    pub c: [i64; 3],
+    pub(crate) c: [i64; 3],
     /// Step per pixel.
-    pub d: [i64; 3],
+    pub(crate) d: [i64; 3],
     /// Dithering on.
-    pub dither: bool,
+    pub(crate) dither: bool,
     /// Column.
-    pub x: i32,
+    pub(crate) x: i32,
     /// Row.
-    pub y: i32,
+    pub(crate) y: i32,
 }
 
 impl SpanShader for ClampedGouraud {
@@ -1018,50 +842,21 @@ impl SpanShader for ClampedGouraud {
 /// A span's depth: the attribute `z_w·65535·2⁸ + 2⁷` at its first pixel
 /// and its step per pixel; the stored depth is the attribute `>> 8`, which
 /// is `d = ⌊z_w·65535 + ½⌋` (SPEC.md 5, [`crate::depth`]).
-///
-/// ```
-/// use fixshade::depth::DepthBuffer;
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{emit, FlatShader, FramebufferSink, SpanDepth};
-/// let (mut px, mut zs) = ([0u16; 4], [u16::MAX; 4]);
-/// let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
-/// let mut depth = DepthBuffer::new(&mut zs, 4, 1).unwrap();
-/// let sh = FlatShader { plain: 1, shade: Default::default(), dither: false, x: 0, y: 0 };
-/// // z_w = ½ at the first pixel (2²³ = ½·65535·2⁸ + 2⁷), then 256/65535 further
-/// // per pixel: stored as d = ⌊z_w · 65535 + ½⌋.
-/// let z = SpanDepth { z: 1 << 23, dz: 1 << 16, inside: true };
-/// emit(&mut FramebufferSink { fb: &mut fb }, &mut depth, 0, 0, 4, z, sh).unwrap();
-/// assert_eq!(zs, [0x8000, 0x8100, 0x8200, 0x8300]);
-/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SpanDepth {
+pub(crate) struct SpanDepth {
     /// Depth at the first pixel.
-    pub z: i64,
+    pub(crate) z: i64,
     /// Step per pixel.
-    pub dz: i64,
+    pub(crate) dz: i64,
     /// The caller knows that the depth stays in `0 .. 65535 · 2⁸` on the
     /// whole span (no range check, no clamp); `false` if it does not know.
-    pub inside: bool,
+    pub(crate) inside: bool,
 }
 
 /// Sends a span: runs the depth test (if any) and writes the pixels that
 /// pass with colours from `sh`. Returns the number of pixels written.
-///
-/// ```
-/// use fixshade::depth::DepthBuffer;
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::span::{emit, FlatShader, FramebufferSink, SpanDepth};
-/// let mut px = [0u16; 8];
-/// let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
-/// let mut zs = [u16::MAX; 8];
-/// let mut depth = DepthBuffer::new(&mut zs, 8, 1).unwrap();
-/// let sh = FlatShader { plain: 7, shade: Default::default(), dither: false, x: 2, y: 0 };
-/// let z = SpanDepth { z: 1 << 23, dz: 0, inside: false };
-/// let n = emit(&mut FramebufferSink { fb: &mut fb }, &mut depth, 0, 2, 4, z, sh).unwrap();
-/// assert_eq!((n, px), (4, [0, 0, 7, 7, 7, 7, 0, 0]));
-/// ```
 #[inline(always)]
-pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
+pub(crate) fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
     sink: &mut P,
     depth: &mut D,
     y: i32,
@@ -1137,7 +932,7 @@ pub fn emit<P: PixelSink, D: DepthTest, S: SpanShader>(
 /// within `i32`) and step by at most 2⁴⁰ for at most 2²⁰ pixels, so the
 /// plain `i64` stepping of the per-pixel path cannot overflow (saturating
 /// it cost S4 1.7 %).
-pub struct PhongPixels<'l, S: Specular, V: Viewer, L: LightSet> {
+pub(crate) struct PhongPixels<'l, S: Specular, V: Viewer, L: LightSet> {
     /// The frame's lighting.
     pub(crate) lighting: &'l Lighting<S, V, L>,
     /// Normal (`Q.26`) and eye position (`I8F24` raw) at the current pixel.
@@ -1204,5 +999,344 @@ mod tests {
         // Red, green and blue land where RGB565 has them.
         let acc = (21u64 << 59) | (42 << 37) | (9 << 16);
         assert_eq!(pixel_by_multiply(acc), (21 << 11) | (42 << 5) | 9);
+    }
+
+    /// The example from the docs of `PixelSink`.
+    #[test]
+    fn doc_pixel_sink() {
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{FramebufferSink, PixelSink};
+        let mut px = [0u16; 4 * 2];
+        let mut fb = Framebuffer::new(&mut px, 4, 2).unwrap();
+        let mut sink = FramebufferSink { fb: &mut fb };
+        sink.fill(1, 1, 3, [5, 6, 7].into_iter()).unwrap();
+        sink.row(0, 2, 2).unwrap().fill(9); // memory: written directly
+        assert_eq!(px, [0, 0, 9, 9, 0, 5, 6, 7]);
+    }
+
+    /// The example from the docs of `TargetSink`.
+    #[test]
+    fn doc_target_sink() {
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{PixelSink, TargetSink};
+        use embedded_graphics::prelude::Point;
+        let mut px = [0u16; 6];
+        let mut fb = Framebuffer::new(&mut px, 6, 1).unwrap();
+        let mut canvas = fb.canvas(); // a DrawTarget
+        let mut sink = TargetSink {
+            target: &mut canvas,
+            origin: Point::new(2, 0),
+        };
+        assert!(sink.row(0, 0, 1).is_none()); // no direct memory: always `fill`
+        sink.fill(0, 1, 2, [4, 5].into_iter()).unwrap(); // column 1 of the box is 3
+        assert_eq!(px, [0, 0, 0, 4, 5, 0]);
+    }
+
+    /// The example from the docs of `FramebufferSink`.
+    #[test]
+    fn doc_framebuffer_sink() {
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{FramebufferSink, PixelSink};
+        let mut px = [0u16; 4];
+        let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
+        let mut sink = FramebufferSink { fb: &mut fb };
+        assert_eq!(sink.row(0, 1, 3).map(|r| r.len()), Some(3));
+        assert!(sink.row(0, 2, 3).is_none()); // spans must be clipped to the framebuffer
+        sink.fill(0, 2, 3, [1, 2, 3].into_iter()).unwrap(); // so this one writes nothing
+        assert_eq!(px, [0; 4]);
+    }
+
+    /// The example from the docs of `BandSink`.
+    #[test]
+    fn doc_band_sink() {
+        use crate::span::{BandSink, PixelSink};
+        let mut px = [0u16; 4 * 2];
+        let mut sink = BandSink {
+            buf: &mut px,
+            width: 4,
+            y0: 10,
+        };
+        sink.row(11, 1, 2).unwrap().fill(7);
+        assert!(sink.row(9, 0, 1).is_none());
+        assert_eq!(px, [0, 0, 0, 0, 0, 7, 7, 0]);
+    }
+
+    /// The example from the docs of `SpanShader`.
+    #[test]
+    fn doc_span_shader() {
+        use crate::span::SpanShader;
+        struct Count(u16); // colour = the pixel's index + 1
+        impl SpanShader for Count {
+            fn next(&mut self) -> u16 {
+                self.0 += 1;
+                self.0
+            }
+            fn skip(&mut self, n: u32) {
+                self.0 += n as u16
+            }
+        }
+        let mut row = [0u16; 4];
+        Count(0).fill_row(&mut row);
+        assert_eq!(row, [1, 2, 3, 4]);
+        // Depth 0x10 at every pixel: the pixel whose stored depth is nearer keeps its colour.
+        let (mut row, mut drow) = ([0u16; 4], [u16::MAX, 0x10, u16::MAX, u16::MAX]);
+        assert_eq!(Count(0).depth_row(&mut row, &mut drow, 0x10 << 8, 0), 3);
+        assert_eq!((row, drow), ([1, 0, 3, 4], [0x10; 4]));
+    }
+
+    /// The example from the docs of `depth_row_pixels`.
+    #[test]
+    fn doc_depth_row_pixels() {
+        use crate::span::{depth_row_pixels, FlatShader};
+        let mut sh = FlatShader {
+            plain: 7,
+            shade: Default::default(),
+            dither: false,
+            x: 0,
+            y: 0,
+        };
+        // Depths -2, -1, 0, 1 (in units of 2⁸) clamp to 0, 0, 0, 1.
+        let (mut row, mut drow) = ([0u16; 4], [1u16; 4]);
+        assert_eq!(
+            depth_row_pixels(&mut sh, &mut row, &mut drow, -2 << 8, 1 << 8),
+            3
+        );
+        assert_eq!((row, drow), ([7, 7, 7, 0], [0, 0, 0, 1]));
+        // Past the far end: clamped to 65535, never in front of a cleared buffer.
+        let mut drow = [u16::MAX; 4];
+        assert_eq!(
+            depth_row_pixels(&mut sh, &mut row, &mut drow, 1 << 40, 0),
+            0
+        );
+    }
+
+    /// The example from the docs of `FlatShader`.
+    #[test]
+    fn doc_flat_shader() {
+        use crate::span::{dither_shade, FlatShader, SpanShader};
+        use crate::Shade;
+        let shade = Shade::from_bits(1 << 15, 1 << 15, 1 << 15);
+        let mut sh = FlatShader {
+            plain: 0x8410,
+            shade,
+            dither: false,
+            x: 5,
+            y: 2,
+        };
+        assert_eq!([sh.next(), sh.next()], [0x8410; 2]);
+        sh.dither = true;
+        sh.skip(3); // now at column 10
+        assert_eq!(sh.next(), dither_shade(shade, 10, 2));
+        assert_eq!(sh.next(), dither_shade(shade, 11, 2));
+    }
+
+    /// The example from the docs of `BAYER`.
+    #[test]
+    fn doc_bayer() {
+        use crate::span::BAYER;
+        let mut t: Vec<u32> = BAYER.iter().flatten().copied().collect();
+        t.sort();
+        // Every m in 0 .. 16 once: thresholds 1/32, 3/32, .., 31/32, averaging ½.
+        assert!(t
+            .iter()
+            .enumerate()
+            .all(|(m, &v)| v == (2 * m as u32 + 1) << 11));
+        assert_eq!(BAYER[0][0], 1 << 11);
+    }
+
+    /// The example from the docs of `dither_shade`.
+    #[test]
+    fn doc_dither_shade() {
+        use crate::span::dither_shade;
+        use crate::Shade;
+        // Grey ½: 15.5 levels of red and blue, 31.5 of green.
+        let half = Shade::from_bits(1 << 15, 1 << 15, 1 << 15);
+        let tile: Vec<u16> = (0..16).map(|i| dither_shade(half, i % 4, i / 4)).collect();
+        assert_eq!(
+            tile.iter()
+                .filter(|&&p| p == (16 << 11 | 32 << 5 | 16))
+                .count(),
+            8
+        );
+        assert_eq!(
+            tile.iter()
+                .filter(|&&p| p == (15 << 11 | 31 << 5 | 15))
+                .count(),
+            8
+        );
+        // Full channels stay full (no level past 31 or 63).
+        assert_eq!(
+            dither_shade(Shade::from_bits(1 << 16, 1 << 16, 1 << 16), 3, 3),
+            0xFFFF
+        );
+    }
+
+    /// The example from the docs of `PackedGouraud`.
+    #[test]
+    fn doc_packed_gouraud() {
+        use crate::span::{PackedGouraud, SpanShader};
+        let one = 1 << 16;
+        // Green falls from 40.5 by ¾ per pixel (biased by ½); red and blue flat.
+        let (c, d) = (
+            [one / 2, 40 * one + one / 2, 31 * one],
+            [0, -3 * one / 4, 0],
+        );
+        let mut sh = PackedGouraud::new(c, d, 9).unwrap();
+        let mut row = [0u16; 9];
+        sh.fill_row(&mut row);
+        let green: Vec<u16> = row.iter().map(|p| p >> 5 & 63).collect();
+        assert_eq!(green, [40, 39, 39, 38, 37, 36, 36, 35, 34]);
+        assert!(row.iter().all(|p| p >> 11 == 0 && p & 31 == 31));
+    }
+
+    /// The example from the docs of `PackedGouraud::new`.
+    #[test]
+    fn doc_packed_gouraud_new() {
+        use crate::span::{PackedGouraud, PairGouraud};
+        let one = 1 << 16;
+        let (c, d) = ([31 * one, 0, 0], [one / 2, 0, 0]);
+        assert!(PackedGouraud::new(c, d, 2).is_some()); // red ends at 31.5
+        assert!(PackedGouraud::new(c, d, 3).is_none()); // red would reach 32
+        assert!(PackedGouraud::new([-1, 0, 0], [0; 3], 1).is_none());
+        // The fields' very ends are allowed, unlike PairGouraud's margin.
+        assert!(PackedGouraud::new([0; 3], [0; 3], 8).is_some());
+        assert!(PairGouraud::new([0; 3], [0; 3], 8).is_none());
+    }
+
+    /// The example from the docs of `BLOCK_PAIRS`.
+    #[test]
+    fn doc_block_pairs() {
+        use crate::span::{PackedGouraud, PairGouraud, SpanShader, BLOCK_PAIRS};
+        // A span of several blocks; steps that no lane holds exactly.
+        let n = 6 * BLOCK_PAIRS + 7;
+        let (c, d) = ([1 << 15, 1 << 16, 30 << 16], [7919, 13001, -9001]);
+        let (mut exact, mut pairs) = (vec![0u16; n as usize], vec![0u16; n as usize]);
+        PackedGouraud::new(c, d, n).unwrap().fill_row(&mut exact);
+        PairGouraud::new(c, d, n).unwrap().fill_row(&mut pairs);
+        let ch = |p: u16| [p >> 11, p >> 5 & 63, p & 31];
+        let diff = |(a, b): (&u16, &u16)| (0..3).all(|k| ch(*a)[k].abs_diff(ch(*b)[k]) <= 1);
+        assert!(exact.iter().zip(&pairs).all(diff)); // still at most 1 LSB at the span's end
+    }
+
+    /// The example from the docs of `PairGouraud`.
+    #[test]
+    fn doc_pair_gouraud() {
+        use crate::span::{PairGouraud, SpanShader};
+        let one = 1 << 16;
+        let (c, d) = ([one, 20 * one, 30 * one], [one / 3, one / 5, -one / 7]);
+        let sh = PairGouraud::new(c, d, 40).unwrap();
+        let mut row = [0u16; 40];
+        sh.clone().fill_row(&mut row);
+        // A pixel at a time, and skipping to an odd column, give the same pixels.
+        let mut one_by_one = sh.clone();
+        assert!(row.iter().all(|&p| p == one_by_one.next()));
+        let mut skipped = sh;
+        skipped.skip(37);
+        assert_eq!([skipped.next(), skipped.next(), skipped.next()], row[37..]);
+    }
+
+    /// The example from the docs of `PairGouraud::new`.
+    #[test]
+    fn doc_pair_gouraud_new() {
+        use crate::span::{PairGouraud, SpanShader};
+        // Red from 0.5 to 30.5 (biased by ½) over 31 pixels, green and blue flat.
+        let one = 1 << 16;
+        let mut sh = PairGouraud::new([one / 2, 10 * one, 3 * one], [one, 0, 0], 31).unwrap();
+        let mut row = [0u16; 31];
+        sh.fill_row(&mut row);
+        assert!(row
+            .iter()
+            .enumerate()
+            .all(|(x, &p)| p == (x as u16) << 11 | 10 << 5 | 3));
+    }
+
+    /// The example from the docs of `ClampedGouraud`.
+    #[test]
+    fn doc_clamped_gouraud() {
+        use crate::span::{ClampedGouraud, SpanShader};
+        let one = 1 << 16;
+        // Red from 29.5 up by one a pixel, blue from 0.5 down: both leave their fields.
+        let c = [29 * one + one / 2, 0, one / 2];
+        let mut sh = ClampedGouraud {
+            c,
+            d: [one, 0, -one],
+            dither: false,
+            x: 0,
+            y: 0,
+        };
+        let px: Vec<u16> = (0..4).map(|_| sh.next()).collect();
+        assert_eq!(px, [29 << 11, 30 << 11, 31 << 11, 31 << 11]); // blue 0, 0, 0, 0
+        assert_eq!(sh.x, 4);
+    }
+
+    /// The example from the docs of `SpanDepth`.
+    #[test]
+    fn doc_span_depth() {
+        use crate::depth::DepthBuffer;
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+        let (mut px, mut zs) = ([0u16; 4], [u16::MAX; 4]);
+        let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
+        let mut depth = DepthBuffer::new(&mut zs, 4, 1).unwrap();
+        let sh = FlatShader {
+            plain: 1,
+            shade: Default::default(),
+            dither: false,
+            x: 0,
+            y: 0,
+        };
+        // z_w = ½ at the first pixel (2²³ = ½·65535·2⁸ + 2⁷), then 256/65535 further
+        // per pixel: stored as d = ⌊z_w · 65535 + ½⌋.
+        let z = SpanDepth {
+            z: 1 << 23,
+            dz: 1 << 16,
+            inside: true,
+        };
+        emit(
+            &mut FramebufferSink { fb: &mut fb },
+            &mut depth,
+            0,
+            0,
+            4,
+            z,
+            sh,
+        )
+        .unwrap();
+        assert_eq!(zs, [0x8000, 0x8100, 0x8200, 0x8300]);
+    }
+
+    /// The example from the docs of `emit`.
+    #[test]
+    fn doc_emit() {
+        use crate::depth::DepthBuffer;
+        use crate::framebuffer::Framebuffer;
+        use crate::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+        let mut px = [0u16; 8];
+        let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
+        let mut zs = [u16::MAX; 8];
+        let mut depth = DepthBuffer::new(&mut zs, 8, 1).unwrap();
+        let sh = FlatShader {
+            plain: 7,
+            shade: Default::default(),
+            dither: false,
+            x: 2,
+            y: 0,
+        };
+        let z = SpanDepth {
+            z: 1 << 23,
+            dz: 0,
+            inside: false,
+        };
+        let n = emit(
+            &mut FramebufferSink { fb: &mut fb },
+            &mut depth,
+            0,
+            2,
+            4,
+            z,
+            sh,
+        )
+        .unwrap();
+        assert_eq!((n, px), (4, [0, 0, 7, 7, 7, 7, 0, 0]));
     }
 }

@@ -72,7 +72,7 @@
 //! Result in `Q.15` (1.0 = 32768). Measured against the f64 reference
 //! `max(1 − δ/2²⁸, 0)^n` (with `0⁰ = 1`):
 //!
-//! - test `max_error_all_integer_exponents` (tests/specular_table.rs): every
+//! - test `max_error_all_integer_exponents` (`src/tests/specular_table.rs`): every
 //!   integer `n` in `0 ..= 2048`, plus `n` = 1/256, 1/128, 1/4, 1/2, 3/4,
 //!   10.25, 7.30, 1171.88 and 4096, on a `δ` grid per exponent (0 ..= 32,
 //!   geometric steps of 2^(1/16) up to 2²⁹ jittered per exponent, 256
@@ -120,11 +120,6 @@ pub struct Exponent(u32);
 
 impl Exponent {
     /// The exponent 0: `x^0 = 1` for every `x`, including `x ≤ 0`.
-    ///
-    /// ```
-    /// use fixshade::{specular_table::pow_from_delta, Exponent};
-    /// assert_eq!(pow_from_delta(1 << 29, Exponent::ZERO), 32768);
-    /// ```
     pub const ZERO: Exponent = Exponent(0);
 
     /// The largest exponent, 4096 (raw `4096 · 256 = 2²⁰`).
@@ -404,20 +399,7 @@ const _: () = assert!(tables_ok());
 /// `n = 0` gives 32768 for every `δ` (`x⁰ = 1`, also for `x ≤ 0`); for
 /// `n > 0`, `δ ≥ 2²⁸` (`x ≤ 0`) gives 0 and `δ = 0` gives 32768. Never
 /// panics; see the module docs for the method, cost and measured accuracy.
-///
-/// ```
-/// use fixshade::{specular_table::pow_from_delta, Exponent};
-/// let n = Exponent::from_int(1000);
-/// assert_eq!(pow_from_delta(0, n), 32768);
-/// // x = 0.999: 0.999^1000 = 0.36770…, i.e. 12048.9 in Q.15.
-/// let delta = (0.001 * (1u64 << 28) as f64).round() as u32;
-/// assert!((pow_from_delta(delta, n) as i32 - 12049).abs() <= 1);
-/// // x = 0.5, n = 2: 0.25.
-/// assert_eq!(pow_from_delta(1 << 27, Exponent::from_int(2)), 8192);
-/// // x ≤ 0.
-/// assert_eq!(pow_from_delta(3 << 27, n), 0);
-/// ```
-pub fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
+pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     let n_q8 = n.0; // ≤ 2^20 by the type's invariant.
     if n_q8 == 0 || delta_q28 == 0 {
         return ONE_Q15;
@@ -540,17 +522,8 @@ fn exp_neg_q24(u_q24: u32) -> u16 {
 /// [`Unit3::half_dist_sq`](crate::Unit3::half_dist_sq) for steep exponents:
 /// `1 − x` formed from a rounded dot product near 1 has lost its relative
 /// precision.
-///
-/// ```
-/// use fixshade::{specular_table::pow_from_cos, Exponent, Unit3};
-/// let n = Exponent::from_int(8);
-/// assert_eq!(pow_from_cos(Unit3::Z.dot(Unit3::Z), n), 32768);
-/// assert_eq!(pow_from_cos(1 << 27, n), 128); // 0.5^8 = 1/256
-/// assert_eq!(pow_from_cos(-(1 << 27), n), 0);
-/// assert_eq!(pow_from_cos(-(1 << 27), Exponent::ZERO), 32768);
-/// assert_eq!(pow_from_cos(i32::MAX, n), 32768); // clamped to 1
-/// ```
-pub fn pow_from_cos(x_q28: i32, n: Exponent) -> u16 {
+#[cfg(test)]
+pub(crate) fn pow_from_cos(x_q28: i32, n: Exponent) -> u16 {
     if n.is_zero() {
         return ONE_Q15;
     }
@@ -560,4 +533,41 @@ pub fn pow_from_cos(x_q28: i32, n: Exponent) -> u16 {
     // x ∈ (0, 2^28] after the clamp, so δ = 2^28 − x ∈ [0, 2^28).
     let x = (x_q28 as u32).min(ONE_Q28);
     pow_from_delta(ONE_Q28 - x, n)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The example from the docs of `Exponent::ZERO`.
+    #[test]
+    fn doc_exponent_zero() {
+        use crate::{specular_table::pow_from_delta, Exponent};
+        assert_eq!(pow_from_delta(1 << 29, Exponent::ZERO), 32768);
+    }
+
+    /// The example from the docs of `pow_from_delta`.
+    #[test]
+    fn doc_pow_from_delta() {
+        use crate::{specular_table::pow_from_delta, Exponent};
+        let n = Exponent::from_int(1000);
+        assert_eq!(pow_from_delta(0, n), 32768);
+        // x = 0.999: 0.999^1000 = 0.36770…, i.e. 12048.9 in Q.15.
+        let delta = (0.001 * (1u64 << 28) as f64).round() as u32;
+        assert!((pow_from_delta(delta, n) as i32 - 12049).abs() <= 1);
+        // x = 0.5, n = 2: 0.25.
+        assert_eq!(pow_from_delta(1 << 27, Exponent::from_int(2)), 8192);
+        // x ≤ 0.
+        assert_eq!(pow_from_delta(3 << 27, n), 0);
+    }
+
+    /// The example from the docs of `pow_from_cos`.
+    #[test]
+    fn doc_pow_from_cos() {
+        use crate::{specular_table::pow_from_cos, Exponent, Unit3};
+        let n = Exponent::from_int(8);
+        assert_eq!(pow_from_cos(Unit3::Z.dot(Unit3::Z), n), 32768);
+        assert_eq!(pow_from_cos(1 << 27, n), 128); // 0.5^8 = 1/256
+        assert_eq!(pow_from_cos(-(1 << 27), n), 0);
+        assert_eq!(pow_from_cos(-(1 << 27), Exponent::ZERO), 32768);
+        assert_eq!(pow_from_cos(i32::MAX, n), 32768); // clamped to 1
+    }
 }

@@ -207,7 +207,9 @@ impl Vec3 {
 ///
 /// Invariant: every component lies in [−2¹⁴, 2¹⁴] raw, i.e. [−1, 1]. The only
 /// ways to make one are [`Unit3::new_clamped`] (which enforces the bound), the
-/// normalisation functions of [`crate::normalize`], and the axis constants.
+/// kernel's normalisation (`src/normalize.rs`; for users,
+/// [`unit_from_f32`](crate::light::unit_from_f32) and
+/// [`unit_from_f64`](crate::light::unit_from_f64)), and the axis constants.
 ///
 /// ```
 /// use fixshade::Unit3;
@@ -253,9 +255,9 @@ impl Unit3 {
     /// places where SPEC.md makes the term it feeds 0.
     ///
     /// ```
-    /// use fixshade::normalize::normalize;
+    /// use fixshade::light::{unit_from_f64, LightError};
     /// use fixshade::Unit3;
-    /// assert_eq!(normalize([0, 0, 0]), None);
+    /// assert_eq!(unit_from_f64([0.0; 3]), Err(LightError::ZeroDirection));
     /// assert!(Unit3::ZERO.is_zero() && Unit3::ZERO.dot(Unit3::X) == 0);
     /// ```
     pub const ZERO: Unit3 = Unit3 { c: [0, 0, 0] };
@@ -336,9 +338,9 @@ impl Unit3 {
     #[inline]
     ///
     /// ```
-    /// use fixshade::normalize::normalize;
+    /// use fixshade::light::unit_from_f64;
     /// use fixshade::Unit3;
-    /// let d = normalize([1, 1, 0]).unwrap(); // 45° from X
+    /// let d = unit_from_f64([1.0, 1.0, 0.0]).unwrap(); // 45° from X
     /// let cos = d.dot(Unit3::X) as f64 / (1u32 << 28) as f64;
     /// assert!((cos - 0.5f64.sqrt()).abs() < 1e-4);
     /// ```
@@ -358,9 +360,9 @@ impl Unit3 {
     #[inline]
     ///
     /// ```
-    /// use fixshade::normalize::normalize;
+    /// use fixshade::light::unit_from_f64;
     /// use fixshade::Unit3;
-    /// let a = normalize([1 << 20, 1, 0]).unwrap(); // about 2^-20 rad from X
+    /// let a = unit_from_f64([1_048_576.0, 1.0, 0.0]).unwrap(); // about 2^-20 rad from X
     /// assert_eq!(Unit3::X.half_dist_sq(Unit3::X), 0);
     /// assert_eq!(Unit3::X.half_dist_sq(Unit3::X.neg()), 2 << 28); // 1 − (−1)
     /// assert_eq!(Unit3::X.half_dist_sq(a) as i64, (1 << 28) - Unit3::X.dot(a) as i64);
@@ -506,11 +508,11 @@ impl Mat4 {
     ///
     /// ```
     /// use fixshade::{Mat4, Vec3};
-    /// let quarter = Mat4::rotation(1, core::f32::consts::FRAC_PI_2);
+    /// let quarter = Mat4::rotation_y(core::f32::consts::FRAC_PI_2);
     /// let p = quarter.transform_point(Vec3::from_f32(1.0, 0.0, 0.0).unwrap()).to_f32();
     /// assert!(p[0].abs() < 0.003 && (p[2] + 1.0).abs() < 1e-4);
     /// ```
-    pub fn rotation(axis: u8, angle: f32) -> Mat4 {
+    pub(crate) fn rotation(axis: u8, angle: f32) -> Mat4 {
         if !angle.is_finite() {
             return Mat4::IDENTITY;
         }
@@ -519,7 +521,7 @@ impl Mat4 {
         // saturates once |angle / τ| nears 2^31. Below 2^33, |angle / τ| <
         // 1.4·10^9 and the rounding of τ·n leaves |a| within π plus a few
         // f32 steps (2^10 at 2^33), which the cos's own floor reduces
-        // (tests/bad_input.rs checks every magnitude). From 2^33, fmod first.
+        // (host/tests/suite/bad_input.rs checks every magnitude). From 2^33, fmod first.
         const HUGE: f32 = (1u64 << 33) as f32;
         let tau = 2.0 * core::f32::consts::PI;
         let angle = if angle < HUGE && angle > -HUGE {
@@ -544,6 +546,39 @@ impl Mat4 {
             _ => [[c, -s, 0, 0], [s, c, 0, 0], [0, 0, one, 0], [0, 0, 0, one]],
         };
         Mat4 { m }
+    }
+
+    /// A rotation by `angle` radians about the x axis (y toward z).
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let p = Mat4::rotation_x(core::f32::consts::FRAC_PI_2).transform_point(Vec3::from_f32(0.0, 1.0, 0.0).unwrap());
+    /// assert!((p.to_f32()[2] - 1.0).abs() < 1e-4);
+    /// ```
+    pub fn rotation_x(angle: f32) -> Mat4 {
+        Mat4::rotation(0, angle)
+    }
+
+    /// A rotation by `angle` radians about the y axis (z toward x).
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let p = Mat4::rotation_y(core::f32::consts::FRAC_PI_2).transform_point(Vec3::from_f32(0.0, 0.0, 1.0).unwrap());
+    /// assert!((p.to_f32()[0] - 1.0).abs() < 1e-4);
+    /// ```
+    pub fn rotation_y(angle: f32) -> Mat4 {
+        Mat4::rotation(1, angle)
+    }
+
+    /// A rotation by `angle` radians about the z axis (x toward y).
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let p = Mat4::rotation_z(core::f32::consts::FRAC_PI_2).transform_point(Vec3::from_f32(1.0, 0.0, 0.0).unwrap());
+    /// assert!((p.to_f32()[1] - 1.0).abs() < 1e-4);
+    /// ```
+    pub fn rotation_z(angle: f32) -> Mat4 {
+        Mat4::rotation(2, angle)
     }
 
     /// A uniform scale by `s` (`I8F24`, saturating).
@@ -726,6 +761,20 @@ impl Mat4 {
 pub(crate) fn sat_shift24(acc: i64) -> i32 {
     let r = (acc >> (COORD_FRAC - 1)).saturating_add(1) >> 1;
     r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+}
+
+impl core::ops::Mul for Mat4 {
+    type Output = Mat4;
+    /// The product `self · o` ([`Mat4::mul`]): `o` applies first.
+    ///
+    /// ```
+    /// use fixshade::{Mat4, Vec3};
+    /// let m = Mat4::translation(Vec3::from_f32(1.0, 0.0, 0.0).unwrap()) * Mat4::rotation_z(0.0);
+    /// assert_eq!(m.transform_point(Vec3::ZERO).to_f32(), [1.0, 0.0, 0.0]);
+    /// ```
+    fn mul(self, o: Mat4) -> Mat4 {
+        Mat4::mul(&self, &o)
+    }
 }
 
 /// The inverse transpose of the 3 × 3 linear part of `m`, scaled so that its

@@ -72,27 +72,17 @@ const B_FAR: u64 = 1 << 54;
 /// ```
 ///
 /// ```
-/// # use fixshade::camera::Camera;
-/// # use fixshade::illumination::InfiniteViewer;
-/// # use fixshade::light::DirectionalLight;
-/// # use fixshade::mesh::{Bounds, Mesh, PackedNormal};
-/// # use fixshade::render::{CachedVertex, RenderOptions, Renderer};
-/// # use fixshade::{Mat4, Material, Rgb};
+/// # use fixshade::prelude::*;
 /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
 /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
-/// # const BOX: Bounds = Bounds::from_bits([0; 3], [2 << 24; 3]);
-/// # let mesh = Mesh::new(&P, BOX, &[[0, 1, 2]]).with_normals(&N);
+/// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::<_, InfiniteViewer, _>::new(
-/// #     &camera, Mat4::IDENTITY, &Material::new(), Rgb::BLACK, &sun, RenderOptions::default(),
-/// # );
-/// use fixshade::framebuffer::Framebuffer;
-/// use fixshade::render::{Gouraud, NoDepth, RenderError};
+/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-/// let mut short = [CachedVertex::default(); 2]; // the mesh has 3 vertices
-/// let e = renderer.draw_framebuffer::<Gouraud, _>(&mesh, &mut fb, &mut NoDepth, &mut short);
+/// let mut short = [CachedVertex::new(); 2]; // the mesh has 3 vertices
+/// let e = MESH.shaded(&renderer).with_cache(&mut short).draw(&mut fb);
 /// assert_eq!(e, Err(RenderError::CacheTooSmall));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -383,6 +373,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         for (i, c) in cache.iter_mut().enumerate() {
             self.project_into(c, i);
         }
+    }
+
+    /// The corners `idx` projected and snapped, without a cache (no colour
+    /// yet).
+    #[inline(always)]
+    pub(crate) fn project3(&self, idx: [usize; 3]) -> [CachedVertex; 3] {
+        let mut l = [CachedVertex::new(); 3];
+        for (c, &i) in l.iter_mut().zip(&idx) {
+            self.project_into(c, i);
+        }
+        l
     }
 
     /// Projects and snaps mesh vertex `i` into `c` (no colour yet).

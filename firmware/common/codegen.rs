@@ -12,10 +12,10 @@ use std::fmt::Write;
 use fixshade::camera::Camera;
 use fixshade::color::{Rgb, Shade};
 use fixshade::light::{unit_from_f64, Attenuation, SpotCone};
-use fixshade_host::mesh_convert::MeshData;
 use fixshade::num::WidePoint;
-use fixshade_host::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 use fixshade::{Exponent, Mat4, Unit3};
+use fixshade_host::mesh_convert::MeshData;
+use fixshade_host::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 
 /// A firmware build script's common start: puts the crate's `memory.x` on
 /// the linker's path, says what reruns the script, and returns `OUT_DIR`.

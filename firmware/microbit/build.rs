@@ -22,10 +22,13 @@ fn main() {
         // The mesh as bytes, read in place from flash by `include_mesh!`.
         let file = format!("{}.fxm", v.mesh);
         fs::write(out.join(&file), codegen::mesh_bytes(&v.desc.mesh)).expect("mesh bytes");
-        let depth = if c.depth {
-            "let mut db = fixshade::depth::DepthBand::new(depth);"
+        let (depth, with_depth) = if c.depth {
+            (
+                "let mut db = fixshade::depth::DepthBand::new(depth);",
+                "\n        .with_depth(&mut db)",
+            )
         } else {
-            "let _ = depth;\n    let mut db = fixshade::depth::NoDepth;"
+            ("let _ = depth;", "")
         };
         let _ = write!(
             s,
@@ -40,14 +43,17 @@ pub fn render_{name}(target: &mut super::Stream, colour: &mut [u16], depth: &mut
     let lights: {lights_type} = {lights};
     let mesh = fixshade::include_mesh!(concat!(env!(\"OUT_DIR\"), \"/{file}\"))
         .map_err(fixshade::render::RenderError::Mesh)?;
-    let r = fixshade::render::Renderer::<_, {viewer}, _>::new(&camera, {model}, &material, {ambient}, &lights, {options});
-    let mut bands = fixshade::band::Bands {{
-        colour,
-        height: super::ROWS as u32,
-        background: Rgb565::from(RawU16::new({bg})),
-    }};
+    let r = fixshade::Renderer::new(&camera, &material, &lights)
+        .with_ambient({ambient})
+        .with_viewer({viewer})
+        .with_shading({shading})
+        .with_options({options});
+    let mut bands = fixshade::band::Bands::new(target, colour, super::ROWS as u32)
+        .with_background(Rgb565::from(RawU16::new({bg})));
     {depth}
-    r.draw_bands::<{shading}, _, _, _>(&mesh, target, &mut bands, &mut db, &mut fixshade::band::Recomputed)
+    mesh.shaded(&r)
+        .with_model({model}){with_depth}
+        .draw(&mut bands)
 }}
 ",
             name = v.name,

@@ -31,12 +31,17 @@ fn main() {
         max_vertices = max_vertices.max(c.vertices);
         let m = v.mesh.to_uppercase();
         let (w, h) = (v.desc.width, v.desc.height);
-        let depth = if c.depth {
-            format!(
-                "let mut db = DepthBuffer::new(depth, {w}, {h}).map_err(|_| RenderError::DepthTooSmall)?;\n    db.clear();\n    let db = &mut db;"
+        // `DepthBuffer::new` clears the buffer; without a depth test the
+        // draw has none (`with_depth` omitted).
+        let (depth, with_depth) = if c.depth {
+            (
+                format!(
+                    "let mut db = DepthBuffer::new(depth, {w}, {h}).map_err(|_| RenderError::DepthTooSmall)?;"
+                ),
+                "\n        .with_depth(&mut db)",
             )
         } else {
-            "let _ = depth;\n    let db = &mut NoDepth;".to_string()
+            ("let _ = depth;".to_string(), "")
         };
         let _ = write!(
             s,
@@ -51,11 +56,19 @@ pub fn render_{name}(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [Cache
     let material = {material};
     let lights: {lights_type} = {lights};
     let mesh = {m};
-    let _ = fb.clear(Rgb565::from(RawU16::new({bg})));
+    fb.clear(Rgb565::from(RawU16::new({bg})));
     {depth}
     crate::count::begin();
-    let r = Renderer::<_, {viewer}, _>::new(&camera, {model}, &material, {ambient}, &lights, {options});
-    let res = r.draw_framebuffer::<{shading}, _>(&mesh, fb, db, cache);
+    let r = Renderer::new(&camera, &material, &lights)
+        .with_ambient({ambient})
+        .with_viewer({viewer})
+        .with_shading({shading})
+        .with_options({options});
+    let res = mesh
+        .shaded(&r)
+        .with_model({model}){with_depth}
+        .with_cache(cache)
+        .draw(fb);
     crate::count::end();
     res
 }}
@@ -138,7 +151,10 @@ pub const SPOT: SpotLight = {};
 }
 
 /// A point or spot light moved to `p` (its spot axis towards the origin).
-fn moved(l: &fixshade_host::scene_desc::LightDesc, p: [f64; 3]) -> fixshade_host::scene_desc::LightDesc {
+fn moved(
+    l: &fixshade_host::scene_desc::LightDesc,
+    p: [f64; 3],
+) -> fixshade_host::scene_desc::LightDesc {
     use fixshade_host::scene_desc::LightDesc;
     let mut l = l.clone();
     match &mut l {

@@ -6,7 +6,7 @@
 
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../../tests/common/fuzz_scene.rs"]
+#[path = "../../host/tests/suite/fuzz_scene.rs"]
 mod fuzz_scene;
 
 fuzz_target!(|data: &[u8]| {

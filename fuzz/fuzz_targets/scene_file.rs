@@ -17,10 +17,10 @@ use std::io::BufReader;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use fixshade::generate::{load_obj, read_obj, ObjError};
-use fixshade::scene_desc::{MeshDesc, SceneDesc};
-use fixshade::scene_file::{load_scene, parse_scene, SceneFileError};
-use fixshade::scene_kernel::KernelScene;
+use fixshade_host::generate::{load_obj, read_obj, ObjError};
+use fixshade_host::scene_desc::{MeshDesc, SceneDesc};
+use fixshade_host::scene_file::{load_scene, parse_scene, SceneFileError};
+use fixshade_host::scene_kernel::KernelScene;
 use libfuzzer_sys::fuzz_target;
 
 /// The scratch folder, one per fuzzing process.

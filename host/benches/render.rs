@@ -71,7 +71,7 @@ fn bench_scenes(c: &mut Criterion) {
                     b.iter(|| {
                         let mut fb = Framebuffer::new(&mut pixels, w, h).expect("framebuffer");
                         let stats = scene
-                            .render(&mut fb, &mut depth, &mut cache)
+                            .render(&mut fb.canvas(), &mut depth, &mut cache)
                             .expect("renders");
                         black_box(stats);
                     })

@@ -25,7 +25,7 @@ use std::fmt::Write as _;
 use std::process::Command;
 
 use embedded_graphics::pixelcolor::Rgb565;
-use fixshade::band::{Bands, Cached, Recomputed};
+use fixshade::band::Bands;
 use fixshade::camera::{Camera, Projection};
 use fixshade::depth::{DepthBand, DepthBuffer};
 use fixshade::framebuffer::Framebuffer;
@@ -37,8 +37,8 @@ use fixshade::material::BlinnPhong;
 use fixshade::mesh::Mesh;
 use fixshade::num::WidePoint;
 use fixshade::render::CachedVertex;
-use fixshade::render::{Gouraud, PhongShading, RenderOptions, Renderer};
-use fixshade::{Exponent, Mat4, Material, Rgb};
+use fixshade::render::{Gouraud, PhongShading, RenderOptions};
+use fixshade::{Exponent, Mat4, Material, Renderer, Rgb};
 use fixshade_host::scene_desc::{LightDesc, SceneDesc};
 use fixshade_host::scene_kernel::KernelScene;
 use fixshade_host::standard_scenes;
@@ -76,7 +76,8 @@ fn band_frame(
     cache: Option<&mut [CachedVertex]>,
 ) {
     let mut fb = Framebuffer::new(px, W, H).unwrap();
-    k.render_bands(&mut fb, h, colour, depth, cache).unwrap();
+    k.render_bands(&mut fb.canvas(), h, colour, depth, cache)
+        .unwrap();
 }
 
 /// Buffers of one run.
@@ -174,40 +175,36 @@ fn firmware_frame(
     };
     let bg = Rgb565::new(0, 0, 0);
     let mut fb = Framebuffer::new(px, W, H).unwrap();
-    let mut bands = Bands {
-        colour,
-        height: h,
-        background: bg,
-    };
     macro_rules! go {
-        ($r:expr, $m:ty) => {{
+        ($r:expr) => {{
             let r = $r;
+            let shaded = mesh.shaded(&r).with_model(model);
             match mode {
                 "whole" => {
+                    // Cleared to the far value as made.
                     let mut db = DepthBuffer::new(depth, W, H).unwrap();
-                    db.clear();
-                    r.draw_framebuffer::<$m, _>(mesh, &mut fb, &mut db, whole_cache)
+                    shaded
+                        .with_depth(&mut db)
+                        .with_cache(whole_cache)
+                        .draw(&mut fb)
                         .unwrap();
                 }
                 "cached" => {
-                    r.draw_bands::<$m, _, _, _>(
-                        mesh,
-                        &mut fb,
-                        &mut bands,
-                        &mut DepthBand::new(depth),
-                        &mut Cached(cache),
-                    )
-                    .unwrap();
+                    let mut display = fb.canvas();
+                    let mut bands = Bands::new(&mut display, colour, h).with_background(bg);
+                    shaded
+                        .with_depth(&mut DepthBand::new(depth))
+                        .with_cache(cache)
+                        .draw(&mut bands)
+                        .unwrap();
                 }
                 _ => {
-                    r.draw_bands::<$m, _, _, _>(
-                        mesh,
-                        &mut fb,
-                        &mut bands,
-                        &mut DepthBand::new(depth),
-                        &mut Recomputed,
-                    )
-                    .unwrap();
+                    let mut display = fb.canvas();
+                    let mut bands = Bands::new(&mut display, colour, h).with_background(bg);
+                    shaded
+                        .with_depth(&mut DepthBand::new(depth))
+                        .draw(&mut bands)
+                        .unwrap();
                 }
             }
         }};
@@ -222,10 +219,11 @@ fn firmware_frame(
             let l = DirectionalLight::from_unit(unit_from_f64(*direction).unwrap())
                 .with_diffuse(rgb(*diffuse))
                 .with_specular(rgb(*specular));
-            go!(
-                Renderer::<_, InfiniteViewer, _>::new(&camera, model, &material, ga, &l, opts),
-                Gouraud
-            )
+            go!(Renderer::new(&camera, &material, &l)
+                .with_ambient(ga)
+                .with_viewer(InfiniteViewer)
+                .with_shading(Gouraud)
+                .with_options(opts))
         }
         [LightDesc::Point {
             position,
@@ -254,10 +252,11 @@ fn firmware_frame(
                     cone: SpotCone::from_f64(*axis, *cutoff_deg, *exponent).unwrap(),
                 },
             );
-            go!(
-                Renderer::<_, LocalViewer, _>::new(&camera, model, &material, ga, &lights, opts),
-                PhongShading
-            )
+            go!(Renderer::new(&camera, &material, &lights)
+                .with_ambient(ga)
+                .with_viewer(LocalViewer)
+                .with_shading(PhongShading)
+                .with_options(opts))
         }
         _ => unreachable!("S1 or S4"),
     }
@@ -405,7 +404,7 @@ fn main() {
                 let cache = (args[3] == "cached").then_some(&mut run.band_cache[..]);
                 let b = run
                     .k
-                    .render_bands(&mut fb, h, &mut run.colour, &mut run.depth, cache)
+                    .render_bands(&mut fb.canvas(), h, &mut run.colour, &mut run.depth, cache)
                     .unwrap();
                 println!("whole {whole:?}\nbands {b:?}");
             }

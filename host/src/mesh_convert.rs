@@ -3,7 +3,7 @@
 //! [`crate::generate`], an OBJ file through [`generate::read_obj`], a
 //! scene's mesh), and written as Rust source (`static`s) or as the bytes
 //! that [`Mesh::from_bytes`] and [`include_mesh!`](fixshade::include_mesh)
-//! read. `examples/convert_mesh.rs` is the command-line front end; the
+//! read. `src/bin/convert.rs` (`fixshade-convert`) is the command-line front end; the
 //! firmware build scripts and [`KernelScene`](crate::scene_kernel::KernelScene)
 //! convert their meshes here, and the f64 reference renders the converted
 //! mesh dequantised ([`MeshData::to_desc`]), so that kernel and reference

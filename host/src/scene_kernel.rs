@@ -23,10 +23,10 @@ use embedded_graphics::Pixel;
 
 use crate::mesh_convert::{ConvertError, MeshData};
 use crate::scene_desc::{self, LightDesc, SceneDesc, SpecularModel};
-use fixshade::band::{Bands, Cached, Recomputed};
+use fixshade::band::{Bands, Cached};
 use fixshade::camera::{Camera, CameraError, Projection};
 use fixshade::color::{Rgb, Shade};
-use fixshade::depth::{DepthBand, DepthBuffer, DepthTest, NoDepth};
+use fixshade::depth::{DepthBand, DepthBuffer, NoDepth};
 use fixshade::framebuffer::Framebuffer;
 use fixshade::illumination::{InfiniteViewer, LocalViewer, Viewer};
 use fixshade::light::LightSet;
@@ -38,11 +38,11 @@ use fixshade::material::{BlinnPhong, Material, Phong, Specular};
 use fixshade::mesh::{Mesh, MeshError};
 use fixshade::num::WidePoint;
 use fixshade::render::{
-    CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, Renderer,
-    ShadingMode,
+    CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, ShadingMode,
 };
-use fixshade::specular_table::Exponent;
 use fixshade::vector::{FormatError, Mat4, Vec3};
+use fixshade::Exponent;
+use fixshade::{FrameDepth, Renderer, Shaded};
 
 /// The most lights a scene may have here.
 ///
@@ -309,10 +309,11 @@ impl KernelScene {
     /// let (mut px, mut depth) = ([0u16; 32 * 24], [0u16; 32 * 24]);
     /// let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
     /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
-    /// let stats = k.render(&mut fb, &mut depth, &mut cache).unwrap();
+    /// // Any DrawTarget; here the framebuffer's (`Framebuffer::canvas`).
+    /// let stats = k.render(&mut fb.canvas(), &mut depth, &mut cache).unwrap();
     /// assert!(stats.pixels > 100);
     /// assert_eq!(fb.pixel(0, 0), Some(k.background)); // cleared, not drawn
-    /// let short = k.render(&mut fb, &mut depth[..100], &mut cache);
+    /// let short = k.render(&mut fb.canvas(), &mut depth[..100], &mut cache);
     /// assert_eq!(short, Err(RenderError::DepthTooSmall));
     /// ```
     pub fn render<T: DrawTarget<Color = Rgb565>>(
@@ -347,7 +348,7 @@ impl KernelScene {
         depth: &mut [u16],
         cache: &mut [CachedVertex],
     ) -> Result<DrawStats, RenderError<core::convert::Infallible>> {
-        let _ = fb.clear(self.background);
+        fb.clear(self.background);
         let size = fb.size();
         self.dispatch(&mut FbDrawer(fb), size, depth, cache)
     }
@@ -391,18 +392,15 @@ impl KernelScene {
             .with_ambient(self.ambient)
             .with_diffuse(self.diffuse);
         match self.desc.viewer {
-            scene_desc::Viewer::Infinite => {
-                self.draw::<S, InfiniteViewer, W>(&m, out, size, depth, cache)
-            }
-            scene_desc::Viewer::Local => {
-                self.draw::<S, LocalViewer, W>(&m, out, size, depth, cache)
-            }
+            scene_desc::Viewer::Infinite => self.draw(&m, InfiniteViewer, out, size, depth, cache),
+            scene_desc::Viewer::Local => self.draw(&m, LocalViewer, out, size, depth, cache),
         }
     }
 
     fn draw<S: Specular, V: Viewer, W: Drawer>(
         &self,
         m: &Material<S>,
+        viewer: V,
         out: &mut W,
         size: Size,
         depth: &mut [u16],
@@ -413,30 +411,32 @@ impl KernelScene {
             two_sided: self.desc.two_sided,
             dither: self.desc.dither,
         };
-        let r = Renderer::<S, V, _>::new(
-            &self.camera,
-            self.model,
-            m,
-            self.global_ambient,
-            &self.lights,
-            options,
-        );
-        let mesh = self.mesh();
+        let r = Renderer::new(&self.camera, m, &self.lights)
+            .with_ambient(self.global_ambient)
+            .with_viewer(viewer)
+            .with_options(options);
+        let job = Job {
+            mesh: self.mesh(),
+            model: self.model,
+            size,
+            depth,
+            has_depth: self.desc.depth,
+            cache,
+        };
         use scene_desc::Shading as Sh;
-        let z = self.desc.depth;
         match self.desc.shading {
-            Sh::Flat => out.draw_scene::<Flat, _, _, _>(&r, &mesh, size, depth, z, cache),
-            Sh::Gouraud => out.draw_scene::<Gouraud, _, _, _>(&r, &mesh, size, depth, z, cache),
-            Sh::Phong => out.draw_scene::<PhongShading, _, _, _>(&r, &mesh, size, depth, z, cache),
+            Sh::Flat => out.draw_scene(&r.with_shading(Flat), job),
+            Sh::Gouraud => out.draw_scene(&r.with_shading(Gouraud), job),
+            Sh::Phong => out.draw_scene(&r.with_shading(PhongShading), job),
         }
     }
 
-    /// Renders into `target` band by band with
-    /// [`Renderer::draw_bands`]: bands of `band_height` rows through
+    /// Renders into `target` band by band ([`Bands`]): bands of `band_height` rows through
     /// `colour` (at least `width × band_height` pixels) and, if the scene
     /// has a depth test, `depth` (as many values). `vertices`: `Some` cache
     /// of one [`CachedVertex`] per vertex ([`Cached`] mode), or `None`
-    /// ([`Recomputed`]). The pixels are those of [`KernelScene::render`].
+    /// ([`Recomputed`](fixshade::band::Recomputed)). The pixels are those
+    /// of [`KernelScene::render`].
     ///
     /// ```
     /// use fixshade::{render::CachedVertex, framebuffer::Framebuffer};
@@ -447,9 +447,10 @@ impl KernelScene {
     /// let mut fb = Framebuffer::new(&mut px, 32, 24).unwrap();
     /// let (mut colour, mut depth) = ([0u16; 32 * 5], [0u16; 32 * 5]); // bands of 5 rows
     /// let mut vertices = vec![CachedVertex::default(); k.mesh().positions.len()];
-    /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, Some(&mut vertices)).unwrap();
+    /// let cached = Some(&mut vertices[..]);
+    /// k.render_bands(&mut fb.canvas(), 5, &mut colour, &mut depth, cached).unwrap();
     /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
-    /// k.render_bands(&mut fb, 5, &mut colour, &mut depth, None).unwrap();
+    /// k.render_bands(&mut fb.canvas(), 5, &mut colour, &mut depth, None).unwrap();
     /// assert_eq!(fb.as_slice(), &frame.pixels[..]);
     /// ```
     pub fn render_bands<T: DrawTarget<Color = Rgb565>>(
@@ -460,16 +461,43 @@ impl KernelScene {
         depth: &mut [u16],
         vertices: Option<&mut [CachedVertex]>,
     ) -> Result<DrawStats, RenderError<T::Error>> {
-        let size = target.bounding_box().size;
-        let mut out = BandDrawer {
-            target,
-            bands: Bands {
-                colour,
-                height: band_height,
-                background: self.background,
-            },
-            vertices,
-        };
+        let mut bands = Bands::new(target, colour, band_height).with_background(self.background);
+        self.render_in_bands(&mut bands, depth, vertices)
+    }
+
+    /// Renders into `bands`, which the caller builds: the target, the
+    /// colour band and its rows, the background (the pixels of
+    /// [`KernelScene::render`] are those with [`KernelScene::background`]),
+    /// and, with [`Bands::interleaved`], which of the bands this worker
+    /// draws. `depth` and `vertices` as for [`KernelScene::render_bands`].
+    ///
+    /// ```
+    /// use fixshade::{band::Bands, framebuffer::Framebuffer, render::CachedVertex};
+    /// use fixshade_host::{scene_kernel::KernelScene, standard_scenes::sphere_scene};
+    /// let k = KernelScene::new(&sphere_scene(32, 24, 12, 6)).unwrap();
+    /// let frame = k.render_frame().unwrap(); // through `render`
+    /// let (mut even, mut odd) = ([0u16; 32 * 24], [0u16; 32 * 24]);
+    /// for (worker, px) in [(0, &mut even), (1, &mut odd)] {
+    ///     let mut fb = Framebuffer::new(px, 32, 24).unwrap();
+    ///     let mut display = fb.canvas();
+    ///     let (mut colour, mut depth) = ([0u16; 32 * 4], [0u16; 32 * 4]); // bands of 4 rows
+    ///     let mut bands = Bands::new(&mut display, &mut colour, 4)
+    ///         .with_background(k.background)
+    ///         .interleaved(worker, 2);
+    ///     k.render_in_bands(&mut bands, &mut depth, None).unwrap();
+    /// }
+    /// // Rows 0–3 from worker 0, 4–7 from worker 1, 8–11 from worker 0, …
+    /// let row = |y: usize| if (y / 4) % 2 == 0 { &even[y * 32..][..32] } else { &odd[y * 32..][..32] };
+    /// assert!((0..24).all(|y| row(y) == &frame.pixels[y * 32..][..32]));
+    /// ```
+    pub fn render_in_bands<T: DrawTarget<Color = Rgb565>>(
+        &self,
+        bands: &mut Bands<'_, '_, T>,
+        depth: &mut [u16],
+        vertices: Option<&mut [CachedVertex]>,
+    ) -> Result<DrawStats, RenderError<T::Error>> {
+        let size = bands.target().bounding_box().size;
+        let mut out = BandDrawer { bands, vertices };
         self.dispatch(&mut out, size, depth, &mut [])
     }
 
@@ -647,6 +675,7 @@ impl DrawTarget for CoverageTarget<'_, '_> {
         let w = self.width as usize;
         let cov = &mut *self.covered;
         self.inner
+            .canvas()
             .draw_iter(pixels.into_iter().inspect(|Pixel(p, _)| {
                 if bb.contains(*p) {
                     cov[p.y as usize * w + p.x as usize] = true;
@@ -663,27 +692,39 @@ impl DrawTarget for CoverageTarget<'_, '_> {
         for p in embedded_graphics::primitives::PointsIter::points(&a) {
             self.covered[p.y as usize * self.width as usize + p.x as usize] = true;
         }
-        self.inner.fill_contiguous(area, colors)
+        self.inner.canvas().fill_contiguous(area, colors)
     }
 
     fn clear(&mut self, color: Rgb565) -> Result<(), Self::Error> {
-        self.inner.clear(color)
+        self.inner.clear(color);
+        Ok(())
     }
+}
+
+/// What [`KernelScene`] draws with a renderer.
+struct Job<'j> {
+    mesh: Mesh<'j>,
+    model: Mat4,
+    /// The target's size.
+    size: Size,
+    /// The depth buffer's storage (the whole frame's or a band's).
+    depth: &'j mut [u16],
+    /// Whether the scene has a depth test.
+    has_depth: bool,
+    /// The whole frame's vertex cache.
+    cache: &'j mut [CachedVertex],
 }
 
 /// Where [`KernelScene`] draws: a whole-frame [`FrameDrawer`], or the band
 /// renderer.
 trait Drawer {
     type Error;
-    /// Draws with a cleared depth buffer over `depth` if `has_depth`.
-    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+    /// Draws with a cleared depth buffer over `job.depth` if
+    /// `job.has_depth`.
+    fn draw_scene<S: Specular, L: LightSet, V: Viewer, M: ShadingMode>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        size: Size,
-        depth: &mut [u16],
-        has_depth: bool,
-        cache: &mut [CachedVertex],
+        r: &Renderer<S, L, V, M>,
+        job: Job,
     ) -> Result<DrawStats, RenderError<Self::Error>>;
 }
 
@@ -691,67 +732,55 @@ trait Drawer {
 /// place): one draw call with a depth test of type `D`.
 trait FrameDrawer {
     type Error;
-    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+    fn draw<S: Specular, L: LightSet, V: Viewer, M: ShadingMode, D: FrameDepth>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        cache: &mut [CachedVertex],
+        shaded: Shaded<'_, '_, Renderer<S, L, V, M>, &mut D, Cached<'_>>,
     ) -> Result<DrawStats, RenderError<Self::Error>>;
 }
 
 impl<F: FrameDrawer> Drawer for F {
     type Error = F::Error;
-    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+    fn draw_scene<S: Specular, L: LightSet, V: Viewer, M: ShadingMode>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        size: Size,
-        depth: &mut [u16],
-        has_depth: bool,
-        cache: &mut [CachedVertex],
+        r: &Renderer<S, L, V, M>,
+        job: Job,
     ) -> Result<DrawStats, RenderError<Self::Error>> {
-        if has_depth {
-            let mut db = DepthBuffer::new(depth, size.width, size.height)
-                .map_err(|_| RenderError::DepthTooSmall)?;
-            db.clear();
-            self.draw::<M, _, _, _, _>(r, mesh, &mut db, cache)
+        let shaded = job.mesh.shaded(r).with_model(job.model);
+        if job.has_depth {
+            // Cleared to the far value as made.
+            let (w, h) = (job.size.width, job.size.height);
+            let mut db =
+                DepthBuffer::new(job.depth, w, h).map_err(|_| RenderError::DepthTooSmall)?;
+            self.draw(shaded.with_depth(&mut db).with_cache(job.cache))
         } else {
-            self.draw::<M, _, _, _, _>(r, mesh, &mut NoDepth, cache)
+            self.draw(shaded.with_depth(&mut NoDepth).with_cache(job.cache))
         }
     }
 }
 
 /// The band renderer into a `DrawTarget`.
-struct BandDrawer<'t, 'b, 'c, T> {
-    target: &'t mut T,
-    bands: Bands<'b>,
+struct BandDrawer<'r, 't, 'b, 'c, T> {
+    bands: &'r mut Bands<'t, 'b, T>,
     vertices: Option<&'c mut [CachedVertex]>,
 }
 
-impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, T> {
+impl<T: DrawTarget<Color = Rgb565>> Drawer for BandDrawer<'_, '_, '_, '_, T> {
     type Error = T::Error;
-    fn draw_scene<M: ShadingMode, S: Specular, V: Viewer, L: LightSet>(
+    fn draw_scene<S: Specular, L: LightSet, V: Viewer, M: ShadingMode>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        _: Size,
-        depth: &mut [u16],
-        has_depth: bool,
-        _: &mut [CachedVertex],
+        r: &Renderer<S, L, V, M>,
+        job: Job,
     ) -> Result<DrawStats, RenderError<Self::Error>> {
-        let (t, b) = (&mut *self.target, &mut self.bands);
-        match (has_depth, self.vertices.as_deref_mut()) {
-            (true, Some(c)) => {
-                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut DepthBand::new(depth), &mut Cached(c))
-            }
-            (true, None) => {
-                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut DepthBand::new(depth), &mut Recomputed)
-            }
-            (false, Some(c)) => {
-                r.draw_bands::<M, _, _, _>(mesh, t, b, &mut NoDepth, &mut Cached(c))
-            }
-            (false, None) => r.draw_bands::<M, _, _, _>(mesh, t, b, &mut NoDepth, &mut Recomputed),
+        let shaded = job.mesh.shaded(r).with_model(job.model);
+        let (b, depth) = (&mut *self.bands, job.depth);
+        match (job.has_depth, self.vertices.as_deref_mut()) {
+            (true, Some(c)) => shaded
+                .with_depth(&mut DepthBand::new(depth))
+                .with_cache(c)
+                .draw(b),
+            (true, None) => shaded.with_depth(&mut DepthBand::new(depth)).draw(b),
+            (false, Some(c)) => shaded.with_cache(c).draw(b),
+            (false, None) => shaded.draw(b),
         }
     }
 }
@@ -760,14 +789,11 @@ struct TargetDrawer<'t, T>(&'t mut T);
 
 impl<T: DrawTarget<Color = Rgb565>> FrameDrawer for TargetDrawer<'_, T> {
     type Error = T::Error;
-    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+    fn draw<S: Specular, L: LightSet, V: Viewer, M: ShadingMode, D: FrameDepth>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        cache: &mut [CachedVertex],
+        shaded: Shaded<'_, '_, Renderer<S, L, V, M>, &mut D, Cached<'_>>,
     ) -> Result<DrawStats, RenderError<T::Error>> {
-        r.draw::<M, T, D>(mesh, self.0, depth, cache)
+        shaded.draw(self.0)
     }
 }
 
@@ -775,13 +801,10 @@ struct FbDrawer<'t, 'a>(&'t mut Framebuffer<'a>);
 
 impl FrameDrawer for FbDrawer<'_, '_> {
     type Error = core::convert::Infallible;
-    fn draw<M: ShadingMode, S: Specular, V: Viewer, L: LightSet, D: DepthTest>(
+    fn draw<S: Specular, L: LightSet, V: Viewer, M: ShadingMode, D: FrameDepth>(
         &mut self,
-        r: &Renderer<S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        cache: &mut [CachedVertex],
+        shaded: Shaded<'_, '_, Renderer<S, L, V, M>, &mut D, Cached<'_>>,
     ) -> Result<DrawStats, RenderError<Self::Error>> {
-        r.draw_framebuffer::<M, D>(mesh, self.0, depth, cache)
+        shaded.draw(self.0)
     }
 }

@@ -277,7 +277,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         "# fixshade on Cortex-M: instructions, flash, RAM, stack\n\n\
          Written by `scripts/firmware.sh`. Instructions are counted by the QEMU plugin \
          `firmware/plugin/insn_count.c` between the markers around each render call \
-         (`Renderer::new` and `draw_framebuffer`, callees included; clearing the frame and \
+         (`Renderer::new` and the draw into the `Framebuffer`, callees included; clearing the frame and \
          depth buffer is not counted), 320 × 240, whole-frame buffer. \"M0+\" counts are of the \
          thumbv6m build, run on QEMU's mps2-an386 (its M4 core executes Thumb-1 code unchanged). \
          Every frame is byte-identical to the host's.\n\n{ESTIMATE_BASIS}\n"
@@ -447,11 +447,11 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         md,
         "## Cortex-M0, 16 KB of RAM (QEMU `microbit`)\n\n\
          firmware/microbit renders S1, S2 and S4 at 320 × 240 with the band renderer \
-         (`draw_bands`, {} rows per band, vertices recomputed per band: no per-vertex storage) \
+         (a draw into `Bands`, {} rows per band, vertices recomputed per band: no per-vertex storage) \
          and streams each band to the host through its `DrawTarget` as it is done; every frame \
          is byte-identical to the host's whole-frame render. S3's mesh (about 560 KB as kernel \
          statics) does not fit the 256 KB of flash. Instructions per frame are counted around \
-         the `draw_bands` call, streaming included. .text {} B, .rodata {} B (meshes included), \
+         the render call (the renderer's set-up and the draw), streaming included. .text {} B, .rodata {} B (meshes included), \
          .bss {} B (colour and depth band).\n\n\
          | frame | instructions | drawn pixels | stack high-water (B) | RAM never touched (B) |\n\
          | --- | ---: | ---: | ---: | ---: |",

@@ -1,6 +1,6 @@
 //! fixshade on an emulated Cortex-M0 with 16 KB of RAM (QEMU `microbit`):
 //! 320 × 240 frames, which cannot be held (150 KB each), rendered with the
-//! kernel's band renderer (`Renderer::draw_bands`, four rows per band,
+//! kernel's band renderer (a draw into `Bands`, four rows per band,
 //! vertices recomputed per band: no per-vertex storage), each band streamed
 //! to the host through semihosting as the renderer hands it to its
 //! `DrawTarget`; then exit through semihosting.
@@ -9,7 +9,7 @@
 //! shading modes (firmware/common/scenes.rs, `m0_variants`); the host
 //! renders the same scenes as whole frames and scripts/firmware.sh compares
 //! them byte for byte. Instructions are counted per frame around the
-//! `draw_bands` call, streaming included.
+//! render call (the renderer's set-up and the draw), streaming included.
 
 #![no_std]
 #![no_main]
@@ -68,7 +68,7 @@ pub enum StreamError {
 }
 
 /// A display that is a semihosting file: it takes whole rows, top to
-/// bottom, as `draw_bands` sends its bands, and writes them to the host.
+/// bottom, as `Bands` sends them, and writes them to the host.
 pub struct Stream {
     fd: usize,
     size: Size,

@@ -22,10 +22,10 @@ pub mod scenes {
 
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::Rgb565;
-    use embedded_graphics::prelude::*;
-    use fixshade::depth::{DepthBuffer, NoDepth};
+    use fixshade::depth::DepthBuffer;
     use fixshade::framebuffer::Framebuffer;
-    use fixshade::render::{CachedVertex, DrawStats, RenderError, Renderer};
+    use fixshade::render::{CachedVertex, DrawStats, RenderError};
+    use fixshade::Renderer;
 
     use crate::Variant;
 

@@ -1,23 +1,33 @@
-//! Converts a mesh to the kernel's flash format (`fixshade::mesh`): from an
-//! OBJ file or one of the generators, to Rust source (`static`s for
-//! `include!`) or to the bytes that `fixshade::include_mesh!` reads.
+//! `fixshade-convert`: converts a mesh to the kernel's flash format
+//! (`fixshade::mesh`), from an OBJ file or one of the generators, to Rust
+//! source (`static`s for a `mod`) or to the bytes that
+//! `fixshade::include_mesh!` reads.
 //!
 //! ```text
-//! cargo run --example convert_mesh -- INPUT OUTPUT [--name NAME] [--derive-normals]
+//! cargo run --release -p fixshade-host --bin fixshade-convert -- INPUT OUTPUT [--rust | --bytes] [--name NAME] [--derive-normals]
 //! ```
 //!
 //! * `INPUT`: an OBJ file, or a generator: `sphere:LON,LAT,RADIUS`,
 //!   `cube:SIZE`, `torus:R,r,U,V`, `plane:SIZE,SEGMENTS`.
-//! * `OUTPUT`: a `.rs` file gets Rust source, any other name the bytes.
-//! * `--name NAME`: the statics' name (default: the output file's stem).
+//! * `OUTPUT`: the file written.
+//! * `--rust`: Rust source, `pub static NAME: fixshade::mesh::Mesh` over
+//!   `NAME_POSITIONS`, `NAME_NORMALS` and `NAME_INDICES`, for `mod` or
+//!   `include!` (the default for an `OUTPUT` ending in `.rs`).
+//! * `--bytes`: the byte layout, for `fixshade::include_mesh!` (the default
+//!   for any other `OUTPUT`).
+//! * `--name NAME`: the statics' name, upper-cased (default: the output
+//!   file's stem); Rust source only.
 //! * `--derive-normals`: a mesh without normals gets the kernel's vertex
-//!   normals (otherwise the device derives them with
-//!   `fixshade::mesh::vertex_normals`).
+//!   normals (Gouraud and Phong shading need normals; otherwise the device
+//!   derives them with `fixshade::mesh::vertex_normals`, or draws `Flat`).
+//! * `-h`, `--help`: the usage, on stdout.
 //!
 //! It prints the box, the largest quantisation error per axis against the
-//! input and the sizes. Bad input prints one line on stderr and exits with
-//! code 2; failing to write the output exits with code 1.
+//! input and the sizes. Bad input prints what is wrong and the usage line
+//! on stderr and exits with code 2; failing to write the output exits with
+//! code 1.
 
+use std::io::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -25,7 +35,38 @@ use fixshade_host::generate;
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::MeshDesc;
 
-const USAGE: &str = "usage: convert_mesh INPUT.obj|sphere:LON,LAT,RADIUS|cube:SIZE|torus:R,r,U,V|plane:SIZE,SEGMENTS OUTPUT[.rs] [--name NAME] [--derive-normals]";
+/// The usage line, printed after a bad argument.
+const USAGE: &str =
+    "usage: fixshade-convert INPUT OUTPUT [--rust | --bytes] [--name NAME] [--derive-normals] (--help: more)";
+
+/// `--help`.
+const HELP: &str = "\
+usage: fixshade-convert INPUT OUTPUT [--rust | --bytes] [--name NAME] [--derive-normals]
+
+Converts a mesh to fixshade's flash format.
+
+  INPUT             an OBJ file, or a generated mesh: sphere:LON,LAT,RADIUS,
+                    cube:SIZE, torus:R,r,U,V or plane:SIZE,SEGMENTS
+  OUTPUT            the file to write
+  --rust            Rust source: `pub static NAME: Mesh` over NAME_POSITIONS,
+                    NAME_NORMALS and NAME_INDICES (default for OUTPUT *.rs)
+  --bytes           the byte layout, for fixshade::include_mesh! (default
+                    for any other OUTPUT, e.g. *.fxm)
+  --name NAME       the statics' name, upper-cased (default: OUTPUT's stem);
+                    Rust source only
+  --derive-normals  give a mesh without normals the kernel's vertex normals
+                    (Gouraud and Phong shading need normals)
+  -h, --help        this text
+
+Convert, include, draw:
+  fixshade-convert bunny.obj src/bunny.fxm --derive-normals
+      let mesh = fixshade::include_mesh!(\"bunny.fxm\")?;  // in src/main.rs
+  or
+  fixshade-convert bunny.obj src/model.rs --name bunny --derive-normals
+      mod model;                                          // in src/main.rs
+      let mesh = &model::BUNNY;
+  then
+      mesh.shaded(&renderer).with_model(spin).draw(&mut display)?;";
 
 /// The numbers after `kind:`, exactly `n` of them.
 fn numbers(spec: &str, n: usize) -> Result<Vec<f64>, String> {
@@ -67,40 +108,104 @@ fn input(arg: &str) -> Result<MeshDesc, String> {
     })
 }
 
-fn run() -> Result<(), (u8, String)> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let bad = |m: String| (2, m);
-    let (mut files, mut name, mut derive) = (Vec::new(), None, false);
+/// The output's format.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Rust,
+    Bytes,
+}
+
+/// What the command line asks for.
+struct Args {
+    input: String,
+    output: String,
+    format: Format,
+    name: Option<String>,
+    derive: bool,
+}
+
+/// Parses the arguments; `Ok(None)` for `--help`.
+fn parse(args: &[String]) -> Result<Option<Args>, String> {
+    let (mut files, mut format, mut name, mut derive) = (Vec::new(), None, None, false);
     let mut it = args.iter();
     while let Some(a) = it.next() {
+        let set = |format: &mut Option<Format>, f: Format| match format {
+            Some(g) if *g != f => Err("--rust and --bytes exclude each other".to_string()),
+            _ => {
+                *format = Some(f);
+                Ok(())
+            }
+        };
         match a.as_str() {
-            "--name" => name = Some(it.next().ok_or_else(|| bad(USAGE.into()))?.clone()),
+            "-h" | "--help" => return Ok(None),
+            "--rust" => set(&mut format, Format::Rust)?,
+            "--bytes" => set(&mut format, Format::Bytes)?,
+            "--name" => {
+                name = Some(
+                    it.next()
+                        .ok_or_else(|| "--name needs a value".to_string())?
+                        .clone(),
+                )
+            }
             "--derive-normals" => derive = true,
-            _ if a.starts_with("--") => return Err(bad(format!("unknown option {a}\n{USAGE}"))),
+            _ if a.starts_with('-') && a.len() > 1 => return Err(format!("unknown option {a}")),
             _ => files.push(a.clone()),
         }
     }
-    let [input_arg, out] = files.as_slice() else {
-        return Err(bad(USAGE.into()));
-    };
-    let desc = input(input_arg).map_err(bad)?;
-    let mut data = MeshData::from_desc(&desc).map_err(|e| bad(format!("{input_arg}: {e}")))?;
-    if derive {
-        data.derive_normals()
-            .map_err(|e| bad(format!("{input_arg}: {e}")))?;
-    }
-    let out_path = Path::new(out);
-    let rust = out_path.extension().is_some_and(|e| e == "rs");
-    let bytes = if rust {
-        let stem = out_path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("mesh");
-        data.to_rust(name.as_deref().unwrap_or(stem)).into_bytes()
+    let [input, output] = <[String; 2]>::try_from(files).map_err(|f| {
+        format!(
+            "expected INPUT and OUTPUT, got {} file argument{}",
+            f.len(),
+            if f.len() == 1 { "" } else { "s" }
+        )
+    })?;
+    let by_extension = if Path::new(&output).extension().is_some_and(|e| e == "rs") {
+        Format::Rust
     } else {
-        data.to_bytes()
+        Format::Bytes
     };
-    std::fs::write(out_path, &bytes).map_err(|e| (1, format!("{out}: {e}")))?;
+    let format = format.unwrap_or(by_extension);
+    if format == Format::Bytes && name.is_some() {
+        return Err(
+            "--name names Rust statics: it needs --rust (or an OUTPUT ending in .rs)".into(),
+        );
+    }
+    Ok(Some(Args {
+        input,
+        output,
+        format,
+        name,
+        derive,
+    }))
+}
+
+fn run() -> Result<(), (u8, String)> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let bad = |m: String| (2, format!("{m}\n{USAGE}"));
+    let Some(a) = parse(&args).map_err(bad)? else {
+        // Not `println!`, which panics when `--help | head` closes the pipe.
+        let _ = writeln!(std::io::stdout(), "{HELP}");
+        return Ok(());
+    };
+    let bad = |m: String| (2, m);
+    let desc = input(&a.input).map_err(bad)?;
+    let mut data = MeshData::from_desc(&desc).map_err(|e| bad(format!("{}: {e}", a.input)))?;
+    if a.derive {
+        data.derive_normals()
+            .map_err(|e| bad(format!("{}: {e}", a.input)))?;
+    }
+    let out_path = Path::new(&a.output);
+    let bytes = match a.format {
+        Format::Rust => {
+            let stem = out_path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("mesh");
+            data.to_rust(a.name.as_deref().unwrap_or(stem)).into_bytes()
+        }
+        Format::Bytes => data.to_bytes(),
+    };
+    std::fs::write(out_path, &bytes).map_err(|e| (1, format!("{}: {e}", a.output)))?;
 
     let back = data.to_desc();
     let mut err = [0.0f64; 3];
@@ -110,20 +215,33 @@ fn run() -> Result<(), (u8, String)> {
         }
     }
     let one = (1u64 << 24) as f64;
-    println!(
+    let mut stdout = std::io::stdout().lock();
+    let _ = writeln!(
+        stdout,
         "{} vertices, {} triangles, normals: {}",
         data.positions.len(),
         data.indices.len(),
-        if data.normals.is_some() { "yes" } else { "no" }
+        match (&data.normals, a.derive) {
+            (None, _) => "no (Flat shading only; --derive-normals adds them)",
+            (Some(_), true) if desc.normals.is_none() => "derived",
+            (Some(_), _) => "yes",
+        }
     );
-    println!(
+    let _ = writeln!(
+        stdout,
         "box: offset {:?}, half-extent {:?}; largest quantisation error per axis {:?}",
         data.bounds.offset.map(|o| o as f64 / one),
         data.bounds.scale.map(|s| s as f64 / one),
         err
     );
-    println!(
-        "{out}: {} bytes ({} as the byte layout)",
+    let _ = writeln!(
+        stdout,
+        "{}: {} ({} bytes; {} as the byte layout, what flash holds)",
+        a.output,
+        match a.format {
+            Format::Rust => "Rust source",
+            Format::Bytes => "mesh bytes",
+        },
         bytes.len(),
         data.to_bytes().len()
     );
@@ -134,7 +252,7 @@ fn main() -> ExitCode {
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         Err((code, message)) => {
-            eprintln!("convert_mesh: {message}");
+            eprintln!("fixshade-convert: {message}");
             ExitCode::from(code)
         }
     }

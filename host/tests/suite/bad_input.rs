@@ -1,6 +1,6 @@
 //! Bad input: every float constructor given NaN, ±∞, negative,
 //! zero-length or out-of-range values returns its documented error (or
-//! its documented clamp), and `Renderer::draw` given a bad mesh, a short
+//! its documented clamp), and a draw given a bad mesh, a short
 //! cache or depth buffer, a too large target or a projection that does not
 //! fit returns the documented `RenderError` and draws nothing. Nothing
 //! panics.
@@ -13,11 +13,10 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::{Point, RgbColor, Size};
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
-use fixshade::band::{Bands, Recomputed};
+use fixshade::band::Bands;
 use fixshade::camera::{Camera, CameraError, Projection};
 use fixshade::depth::DepthBuffer;
 use fixshade::framebuffer::Framebuffer;
-use fixshade::illumination::InfiniteViewer;
 use fixshade::light::{
     unit_from_f32, unit_from_f64, AreaLight, Attenuation, DirectionalLight, LightError, PointLight,
     SpotCone, SpotLight,
@@ -25,12 +24,9 @@ use fixshade::light::{
 use fixshade::material::NoSpecular;
 use fixshade::mesh::{face_normal, vertex_normals, Bounds, Mesh, MeshError, PackedNormal};
 use fixshade::num::WidePoint;
-use fixshade::render::{
-    CachedVertex, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions, Renderer,
-    MAX_TARGET_SIDE,
-};
+use fixshade::render::{CachedVertex, Flat, Gouraud, PhongShading, RenderError, MAX_TARGET_SIDE};
 use fixshade::vector::FormatError;
-use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
+use fixshade::{Exponent, Mat4, Material, Renderer, Rgb, Unit3, Vec3};
 use fixshade_host::scene_desc::{CameraDesc, LightDesc, MeshDesc, SceneDesc};
 use fixshade_host::scene_kernel::KernelScene;
 use fuzz_scene::CountingTarget;
@@ -404,19 +400,16 @@ fn zero_normals_light_ambient_only() {
     let m = Material::new().with_emission(Rgb::from_f32(0.1, 0.0, 0.0).unwrap());
     let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     let ambient = Rgb::grey_f32(0.5).unwrap();
-    let r = Renderer::<_, InfiniteViewer, _>::new(
-        &camera,
-        Mat4::IDENTITY,
-        &m,
-        ambient,
-        &sun,
-        RenderOptions::default(),
-    );
+    let r = Renderer::new(&camera, &m, &sun)
+        .with_ambient(ambient)
+        .with_shading(PhongShading);
     let expect = r.lighting().ambient().to_rgb565();
     let mut px = vec![0u16; 32 * 32];
     let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
     let mut cache = [CachedVertex::default(); 3];
-    r.draw_framebuffer::<PhongShading, _>(&mesh, &mut fb, &mut NoDepth, &mut cache)
+    mesh.shaded(&r)
+        .with_cache(&mut cache)
+        .draw(&mut fb)
         .unwrap();
     assert_eq!(fb.pixel(16, 16), Some(expect));
     // 0.1 + 0.5·0.2 = 0.2 red, 0.1 green and blue.
@@ -424,7 +417,7 @@ fn zero_normals_light_ambient_only() {
     assert_eq!((expect.r(), expect.g(), expect.b()), (6, 6, 3));
 }
 
-/// `Renderer::draw` with a bad mesh, short buffers, a too large target or
+/// A draw with a bad mesh, short buffers, a too large target or
 /// a projection that does not fit: the documented error, nothing drawn.
 #[test]
 fn draw_errors() {
@@ -436,20 +429,15 @@ fn draw_errors() {
     let max_idx = [[u16::MAX, 0, 1]];
     let m = Material::new();
     let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    let r = Renderer::<_, InfiniteViewer, _>::new(
-        &camera,
-        Mat4::IDENTITY,
-        &m,
-        Rgb::BLACK,
-        &sun,
-        RenderOptions::default(),
-    );
+    let r = Renderer::new(&camera, &m, &sun);
+    let flat = r.with_shading(Flat);
+    let phong = r.with_shading(PhongShading);
     let mut cache = [CachedVertex::default(); 3];
 
     let mut t = CountingTarget::new(32, 32);
     let bad = Mesh::new(&pos, BOX2, &bad_idx).with_normals(&normals);
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
+        bad.shaded(&r).with_cache(&mut cache).draw(&mut t),
         Err(RenderError::Mesh(MeshError::IndexOutOfRange {
             triangle: 1,
             index: 3
@@ -457,7 +445,7 @@ fn draw_errors() {
     );
     let bad = Mesh::new(&pos, BOX2, &max_idx);
     assert_eq!(
-        r.draw::<Flat, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
+        bad.shaded(&flat).with_cache(&mut cache).draw(&mut t),
         Err(RenderError::Mesh(MeshError::IndexOutOfRange {
             triangle: 0,
             index: u16::MAX
@@ -465,46 +453,52 @@ fn draw_errors() {
     );
     let bad = Mesh::new(&pos, BOX2, &good_idx).with_normals(&normals[..2]);
     assert_eq!(
-        r.draw::<PhongShading, _, _>(&bad, &mut t, &mut NoDepth, &mut cache),
+        bad.shaded(&phong).with_cache(&mut cache).draw(&mut t),
         Err(RenderError::Mesh(MeshError::NormalCount))
     );
     // No positions, an index: out of range too.
     let empty = Mesh::new(&[], BOX2, &good_idx);
     assert!(matches!(
-        r.draw::<Flat, _, _>(&empty, &mut t, &mut NoDepth, &mut cache),
+        empty.shaded(&flat).with_cache(&mut cache).draw(&mut t),
         Err(RenderError::Mesh(_))
     ));
 
     let mesh = Mesh::new(&pos, BOX2, &good_idx).with_normals(&normals);
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache[..2]),
+        mesh.shaded(&r).with_cache(&mut cache[..2]).draw(&mut t),
         Err(RenderError::CacheTooSmall)
     );
     // A depth buffer for fewer rows than the target.
     let mut d = [0u16; 32 * 31];
     let mut short = DepthBuffer::new(&mut d, 32, 31).unwrap();
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&mesh, &mut t, &mut short, &mut cache),
+        mesh.shaded(&r)
+            .with_depth(&mut short)
+            .with_cache(&mut cache)
+            .draw(&mut t),
         Err(RenderError::DepthTooSmall)
     );
     // Or narrower.
     let mut d = [0u16; 32 * 32];
     let mut narrow = DepthBuffer::new(&mut d, 31, 32).unwrap();
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&mesh, &mut t, &mut narrow, &mut cache),
+        mesh.shaded(&r)
+            .with_depth(&mut narrow)
+            .with_cache(&mut cache)
+            .draw(&mut t),
         Err(RenderError::DepthTooSmall)
     );
     assert_eq!(t.writes, 0, "an error draw drew");
 
     let mut huge = CountingTarget::new(MAX_TARGET_SIDE + 1, 0);
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&mesh, &mut huge, &mut NoDepth, &mut cache),
+        mesh.shaded(&r).with_cache(&mut cache).draw(&mut huge),
         Err(RenderError::TargetTooLarge)
     );
     // A projection whose coefficients do not fit this target's aspect.
     let mut thin = CountingTarget::new(1, 4000);
     assert_eq!(
-        r.draw::<Gouraud, _, _>(&mesh, &mut thin, &mut NoDepth, &mut cache),
+        mesh.shaded(&r).with_cache(&mut cache).draw(&mut thin),
         Err(RenderError::Camera(CameraError::BadProjection))
     );
     // A camera with NaN fields (they are public): an error, not a panic.
@@ -514,22 +508,114 @@ fn draw_errors() {
         projection: Projection::Perspective { fovy_deg: NAN },
         ..camera
     };
-    let rn = Renderer::<_, InfiniteViewer, _>::new(
-        &nan_cam,
-        Mat4::IDENTITY,
-        &m,
-        Rgb::BLACK,
-        &sun,
-        RenderOptions::default(),
-    );
+    let rn = Renderer::new(&nan_cam, &m, &sun);
     let mut t2 = CountingTarget::new(32, 32);
-    let res = rn.draw::<Gouraud, _, _>(&mesh, &mut t2, &mut NoDepth, &mut cache);
+    let res = mesh.shaded(&rn).with_cache(&mut cache).draw(&mut t2);
     assert!(t2.outside == 0, "{res:?}");
     // And the error path's pixels are all in place after a good draw.
-    let stats = r
-        .draw::<Gouraud, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
-        .unwrap();
+    let stats = mesh.shaded(&r).with_cache(&mut cache).draw(&mut t).unwrap();
     assert!(stats.pixels > 50 && t.outside == 0);
+}
+
+/// Gouraud and Phong shading interpolate vertex normals: a mesh without
+/// them is `RenderError::NoNormals` and nothing is drawn, into any output
+/// (a `DrawTarget`, a framebuffer, bands), cached or not, with a depth test
+/// or not; Flat shading (the face's normal) draws it.
+#[test]
+fn smooth_shading_without_normals_is_an_error() {
+    let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    let idx = [[0u16, 1, 2]];
+    let mesh = Mesh::new(&TRIANGLE, BOX2, &idx);
+    assert!(mesh.normals.is_none() && mesh.validate().is_ok());
+    let m = Material::new();
+    let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    let gouraud = Renderer::new(&camera, &m, &sun); // the default
+    let phong = gouraud.with_shading(PhongShading);
+    let flat = gouraud.with_shading(Flat);
+    let mut cache = [CachedVertex::default(); 3];
+    const FILL: u16 = 0x1234;
+
+    // A DrawTarget.
+    let mut t = CountingTarget::new(32, 32);
+    assert_eq!(
+        mesh.shaded(&gouraud).draw(&mut t),
+        Err(RenderError::NoNormals)
+    );
+    assert_eq!(
+        mesh.shaded(&gouraud).with_cache(&mut cache).draw(&mut t),
+        Err(RenderError::NoNormals)
+    );
+    assert_eq!(
+        mesh.shaded(&phong).draw(&mut t),
+        Err(RenderError::NoNormals)
+    );
+    assert_eq!(t.writes, 0, "an error draw drew");
+
+    // A framebuffer (the fast path), with a depth buffer.
+    let (mut px, mut z) = ([FILL; 32 * 32], [0u16; 32 * 32]);
+    let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+    let mut depth = DepthBuffer::new(&mut z, 32, 32).unwrap();
+    assert_eq!(
+        mesh.shaded(&gouraud)
+            .with_depth(&mut depth)
+            .with_cache(&mut cache)
+            .draw(&mut fb),
+        Err(RenderError::NoNormals)
+    );
+    assert_eq!(
+        mesh.shaded(&phong).draw(&mut fb),
+        Err(RenderError::NoNormals)
+    );
+    // Bands (which would clear each band to the background).
+    let mut colour = [0u16; 32 * 8];
+    let mut zb = [0u16; 32 * 8];
+    let mut display = fb.canvas();
+    let mut bands = Bands::new(&mut display, &mut colour, 8).with_background(Rgb565::BLUE);
+    assert_eq!(
+        mesh.shaded(&gouraud)
+            .with_depth(&mut fixshade::depth::DepthBand::new(&mut zb))
+            .draw(&mut bands),
+        Err(RenderError::NoNormals)
+    );
+    assert_eq!(
+        mesh.shaded(&phong).with_cache(&mut cache).draw(&mut bands),
+        Err(RenderError::NoNormals)
+    );
+    assert!(
+        fb.as_slice().iter().all(|&p| p == FILL),
+        "an error draw drew"
+    );
+    assert!(
+        depth.as_slice().iter().all(|&d| d == u16::MAX),
+        "depth written"
+    );
+
+    // Flat shading draws the same mesh: every pixel once, the same pixels
+    // through each output.
+    let stats = mesh
+        .shaded(&flat)
+        .with_cache(&mut cache)
+        .draw(&mut t)
+        .unwrap();
+    assert!(stats.pixels > 50, "{stats:?}");
+    assert_eq!(t.writes, stats.pixels as u64);
+    assert_eq!(t.outside, 0);
+    let s = mesh
+        .shaded(&flat)
+        .with_depth(&mut depth)
+        .draw(&mut fb)
+        .unwrap();
+    assert_eq!(s.pixels, stats.pixels);
+    let drawn = fb.as_slice().iter().filter(|&&p| p != FILL).count();
+    assert_eq!(drawn, stats.pixels as usize);
+    let facing = fb.pixel(16, 16).unwrap();
+    assert_ne!(facing, Rgb565::new(0, 0, 0), "lit by the sun");
+    let mut display = fb.canvas();
+    let mut bands = Bands::new(&mut display, &mut colour, 8).with_background(Rgb565::BLUE);
+    let s = mesh.shaded(&flat).draw(&mut bands).unwrap();
+    assert_eq!(s.pixels, stats.pixels);
+    assert_eq!(fb.pixel(16, 16), Some(facing));
+    assert_eq!(fb.pixel(0, 0), Some(Rgb565::BLUE));
 }
 
 /// Found here: `Attenuation::new` accepted a negative constant above
@@ -777,6 +863,15 @@ fn old_rotation(axis: u8, angle: f32) -> Mat4 {
     Mat4 { m }
 }
 
+/// The rotation about axis 0 (x), 1 (y) or 2 (z).
+fn rotation(axis: u8, angle: f32) -> Mat4 {
+    match axis {
+        0 => Mat4::rotation_x(angle),
+        1 => Mat4::rotation_y(angle),
+        _ => Mat4::rotation_z(angle),
+    }
+}
+
 /// Whether `m` is a rotation about `axis` with entries in [−1, 1]: the
 /// identity outside the 2 × 2 block, which is `[[c, −s], [s, c]]` (up to
 /// the axis's sign convention) with `c² + s²` within 10⁻⁴ of 1.
@@ -809,10 +904,10 @@ fn rotation_of_any_finite_angle() {
     let tau = (2.0 * core::f32::consts::PI) as f64;
     for axis in 0..3u8 {
         for angle in [27_026_295_000.0, f32::MAX, -f32::MAX, 1e38, -3e12, 8.6e9] {
-            let m = Mat4::rotation(axis, angle);
+            let m = rotation(axis, angle);
             assert!(is_rotation(axis, &m), "{angle}: {m:?}");
             let r = ((angle as f64) % tau) as f32;
-            assert_eq!(m, Mat4::rotation(axis, r), "{angle}");
+            assert_eq!(m, rotation(axis, r), "{angle}");
         }
     }
     let mut rng = Mix(4);
@@ -824,22 +919,18 @@ fn rotation_of_any_finite_angle() {
             continue;
         }
         let axis = (i % 3) as u8;
-        let m = Mat4::rotation(axis, angle);
+        let m = rotation(axis, angle);
         assert!(is_rotation(axis, &m), "{angle}: {m:?}");
         if angle.abs() < (1u64 << 33) as f32 {
             assert_eq!(m, old_rotation(axis, angle), "{angle}");
         } else {
             let r = ((angle as f64) % tau) as f32;
-            assert_eq!(m, Mat4::rotation(axis, r), "{angle}");
+            assert_eq!(m, rotation(axis, r), "{angle}");
         }
         // Ordinary angles, which the bit patterns rarely hit.
         let small = (rng.next() as i64 as f64 / i64::MAX as f64 * 100.0) as f32;
-        assert_eq!(
-            Mat4::rotation(axis, small),
-            old_rotation(axis, small),
-            "{small}"
-        );
-        assert!(is_rotation(axis, &Mat4::rotation(axis, small)));
+        assert_eq!(rotation(axis, small), old_rotation(axis, small), "{small}");
+        assert!(is_rotation(axis, &rotation(axis, small)));
     }
 }
 
@@ -926,28 +1017,28 @@ fn full_screen_quad() -> ([[i16; 3]; 4], Bounds, [[u16; 3]; 2]) {
     )
 }
 
-fn facing_renderer() -> Renderer<NoSpecular, InfiniteViewer, DirectionalLight> {
+/// The light of [`facing_renderer`]: from the camera's side.
+fn facing_sun() -> DirectionalLight {
+    DirectionalLight::new([0.0, 0.0, 1.0]).unwrap()
+}
+
+/// A camera looking at the quad of [`full_screen_quad`] from z = 1, lit by
+/// `sun`.
+fn facing_renderer(sun: &DirectionalLight) -> Renderer<'_, NoSpecular, DirectionalLight> {
     let camera = Camera::look_at([0.0, 0.0, 1.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    Renderer::new(
-        &camera,
-        Mat4::IDENTITY,
-        &Material::new(),
-        Rgb::BLACK,
-        &sun,
-        RenderOptions::default(),
-    )
+    Renderer::new(&camera, &Material::new(), sun)
 }
 
 /// A target whose bounding box ends past `i32::MAX` is refused with
-/// `TargetTooLarge` by `draw` and `draw_bands` (found by an audit: the
+/// `TargetTooLarge` by a whole-frame draw and a banded one (found by an audit: the
 /// points of its last pixels overflowed `embedded-graphics`' arithmetic);
 /// one that ends exactly at `i32::MAX` is drawn, every run inside its box.
 #[test]
 fn targets_ending_past_i32_max() {
     let (p, b, i) = full_screen_quad();
     let mesh = Mesh::new(&p, b, &i);
-    let r = facing_renderer();
+    let sun = facing_sun();
+    let r = facing_renderer(&sun).with_shading(Flat);
     let mut cache = [CachedVertex::default(); 4];
     let mut colour = [0u16; 64 * 8];
     for (corner, ok) in [
@@ -959,14 +1050,9 @@ fn targets_ending_past_i32_max() {
     ] {
         let bb = Rectangle::new(corner, Size::new(64, 64));
         let mut t = Discard { bb, runs: 0 };
-        let drawn = r.draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache);
-        let mut bands = Bands {
-            colour: &mut colour,
-            height: 8,
-            background: Rgb565::BLACK,
-        };
-        let banded =
-            r.draw_bands::<Flat, _, _, _>(&mesh, &mut t, &mut bands, &mut NoDepth, &mut Recomputed);
+        let drawn = mesh.shaded(&r).with_cache(&mut cache).draw(&mut t);
+        let mut bands = Bands::new(&mut t, &mut colour, 8).with_background(Rgb565::BLACK);
+        let banded = mesh.shaded(&r).draw(&mut bands);
         if ok {
             assert!(
                 drawn.unwrap().pixels == 64 * 64 && banded.is_ok() && t.runs > 0,
@@ -997,9 +1083,9 @@ fn draw_counts_saturate() {
         runs: 0,
     };
     let mut cache = [CachedVertex::default(); 4];
-    let stats = facing_renderer()
-        .draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
-        .unwrap();
+    let sun = facing_sun();
+    let r = facing_renderer(&sun).with_shading(Flat);
+    let stats = mesh.shaded(&r).with_cache(&mut cache).draw(&mut t).unwrap();
     assert_eq!(stats.pixels, u32::MAX);
     assert!(t.runs >= side as u64, "a run or two a row");
 }
@@ -1056,45 +1142,38 @@ impl DrawTarget for Growing {
 #[test]
 fn target_box_read_once() {
     let (p, b, i) = full_screen_quad();
-    let mesh = Mesh::new(&p, b, &i);
-    let r = facing_renderer();
+    // Gouraud and Phong shading need vertex normals (`RenderError::NoNormals`).
+    let normals = [PackedNormal::Z; 4];
+    let mesh = Mesh::new(&p, b, &i).with_normals(&normals);
+    let sun = facing_sun();
+    let r = facing_renderer(&sun);
     let mut cache = [CachedVertex::default(); 4];
     let mut band_cache = [fixshade::render::CachedVertex::default(); 4];
     let mut z = [0u16; 16 * 16];
     for height in [1, 4, 16] {
         let mut colour = [0u16; 16 * 16];
-        let mut bands = Bands {
-            colour: &mut colour[..16 * height as usize],
-            height,
-            background: Rgb565::BLACK,
-        };
+        let colour = &mut colour[..16 * height as usize];
         let mut t = Growing {
             calls: 0.into(),
             runs: 0,
         };
-        let s = r
-            .draw_bands::<Gouraud, _, _, _>(
-                &mesh,
-                &mut t,
-                &mut bands,
-                &mut NoDepth,
-                &mut Recomputed,
-            )
+        let mut bands = Bands::new(&mut t, colour, height).with_background(Rgb565::BLACK);
+        let s = mesh
+            .shaded(&r.with_shading(Gouraud))
+            .draw(&mut bands)
             .unwrap();
         assert_eq!((s.pixels, t.runs), (256, 16 / height as u64));
         let mut t = Growing {
             calls: 0.into(),
             runs: 0,
         };
+        let mut bands = Bands::new(&mut t, colour, height).with_background(Rgb565::BLACK);
         let mut zb = fixshade::depth::DepthBand::new(&mut z);
-        let s = r
-            .draw_bands::<PhongShading, _, _, _>(
-                &mesh,
-                &mut t,
-                &mut bands,
-                &mut zb,
-                &mut fixshade::band::Cached(&mut band_cache),
-            )
+        let s = mesh
+            .shaded(&r.with_shading(PhongShading))
+            .with_depth(&mut zb)
+            .with_cache(&mut band_cache)
+            .draw(&mut bands)
             .unwrap();
         assert_eq!(s.pixels, 256);
     }
@@ -1102,8 +1181,10 @@ fn target_box_read_once() {
         calls: 0.into(),
         runs: 0,
     };
-    let s = r
-        .draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
+    let s = mesh
+        .shaded(&r.with_shading(Flat))
+        .with_cache(&mut cache)
+        .draw(&mut t)
         .unwrap();
     assert_eq!(s.pixels, 256);
     assert!(t.runs > 0);

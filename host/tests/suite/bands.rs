@@ -1,12 +1,14 @@
 //! The band renderer against the whole-frame render: bit for bit, for band
 //! heights 1, 7, 16 and the full height, cached and recomputed vertices, on
-//! the standard scenes; and its errors.
+//! the standard scenes; the frame split between two workers
+//! (`Bands::interleaved`, one thread each); and its errors.
 
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{OriginDimensions, Size};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::Pixel;
+use fixshade::band::Bands;
 use fixshade::framebuffer::Framebuffer;
 use fixshade::render::{CachedVertex, DrawStats, RenderError};
 use fixshade_host::scene_desc::{SceneDesc, Shading};
@@ -46,7 +48,7 @@ impl DrawTarget for Counting<'_> {
         assert_eq!(area.top_left.y as u32, self.rows, "bands in order, no gap");
         self.rows += area.size.height;
         self.fills += 1;
-        self.fb.fill_contiguous(area, colors)
+        self.fb.canvas().fill_contiguous(area, colors)
     }
 }
 
@@ -199,6 +201,7 @@ fn too_small_buffers_are_errors() {
     let k = KernelScene::new(&standard_scenes::s1(40, 30)).unwrap();
     let mut px = vec![0u16; 40 * 30];
     let mut fb = Framebuffer::new(&mut px, 40, 30).unwrap();
+    let mut fb = fb.canvas();
     let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
     let (mut colour, mut depth) = (vec![0u16; 40 * 4], vec![0u16; 40 * 4]);
     let r = k.render_bands(&mut fb, 5, &mut colour, &mut depth, None);
@@ -220,5 +223,119 @@ fn too_small_buffers_are_errors() {
     // An empty target draws nothing and needs nothing.
     let mut none: [u16; 0] = [];
     let mut fb = Framebuffer::new(&mut none, 0, 0).unwrap();
-    assert!(k.render_bands(&mut fb, 1, &mut [], &mut [], None).is_ok());
+    assert!(k
+        .render_bands(&mut fb.canvas(), 1, &mut [], &mut [], None)
+        .is_ok());
+}
+
+/// The frame of `k` drawn by worker `worker` of `workers` in bands of
+/// `h_band` rows (`Bands::interleaved`) into a framebuffer of its own,
+/// filled with `fill` first, with its own colour band, depth band and
+/// vertex cache; and its counts.
+fn worker_frame(
+    k: &KernelScene,
+    h_band: u32,
+    cached: bool,
+    (worker, workers): (u32, u32),
+    fill: u16,
+) -> (Vec<u16>, DrawStats) {
+    let (w, h) = (k.width, k.height);
+    let mut px = vec![fill; (w * h) as usize];
+    let n = (w * h_band) as usize;
+    let (mut colour, mut depth) = (vec![0u16; n], vec![0u16; n]);
+    let mut cache = vec![CachedVertex::default(); k.mesh().positions.len()];
+    let mut fb = Framebuffer::new(&mut px, w, h).unwrap();
+    let mut display = fb.canvas();
+    let mut bands = Bands::new(&mut display, &mut colour, h_band)
+        .with_background(k.background)
+        .interleaved(worker, workers);
+    let v = cached.then_some(&mut cache[..]);
+    let stats = k.render_in_bands(&mut bands, &mut depth, v).unwrap();
+    (px, stats)
+}
+
+/// Two workers, one thread each, draw the even and the odd bands of the
+/// standard scenes (`Bands::interleaved(k, 2)`), each into its own
+/// framebuffer with its own colour band, depth band and vertex cache: the
+/// frame assembled from each worker's bands is, byte for byte, the
+/// single-worker band render and the whole frame; a worker leaves the
+/// other's rows alone, their counts add up to the whole frame's, and a
+/// worker index at or past the worker count draws nothing.
+#[test]
+fn interleaved_workers_match_the_whole_frame() {
+    let scenes = [
+        ("S1", standard_scenes::s1(320, 240)),
+        ("S2", standard_scenes::s2(320, 240)),
+        ("S3", standard_scenes::s3(320, 240)),
+        ("S4", standard_scenes::s4(320, 240)),
+    ];
+    for (name, d) in &scenes {
+        let k = KernelScene::new(d).unwrap();
+        let (reference, all) = whole(&k);
+        // What a worker's framebuffer holds before it draws: a colour the
+        // frame does not have.
+        let mut used = vec![false; 1 << 16];
+        for &p in &reference {
+            used[p as usize] = true;
+        }
+        let fill = used.iter().position(|&u| !u).unwrap() as u16;
+        let (w, h) = (k.width as usize, k.height);
+        for h_band in [1, 7, 16, 100] {
+            for cached in [true, false] {
+                let how = format!("{name}: bands of {h_band} rows, cached {cached}");
+                let (single, single_stats) = banded(&k, h_band, cached);
+                let [(even, s0), (odd, s1)] = std::thread::scope(|scope| {
+                    let k = &k;
+                    [0, 1]
+                        .map(|worker| {
+                            scope.spawn(move || worker_frame(k, h_band, cached, (worker, 2), fill))
+                        })
+                        .map(|t| t.join().unwrap())
+                });
+                // Row y is in band y / rows, drawn by worker (y / rows) mod 2.
+                let rows = h_band.min(h) as usize;
+                let mut frame = vec![0u16; w * h as usize];
+                for (y, row) in frame.chunks_mut(w).enumerate() {
+                    let (mine, other) = if (y / rows).is_multiple_of(2) {
+                        (&even, &odd)
+                    } else {
+                        (&odd, &even)
+                    };
+                    row.copy_from_slice(&mine[y * w..][..w]);
+                    assert!(
+                        other[y * w..][..w].iter().all(|&p| p == fill),
+                        "{how}: row {y} drawn by the other worker too"
+                    );
+                }
+                assert!(frame == single, "{how}: not the single-worker bands");
+                assert!(frame == reference, "{how}: not the whole frame");
+                assert_eq!(s0.pixels + s1.pixels, all.pixels, "{how}");
+                assert_eq!(s0.drawn + s1.drawn, single_stats.drawn, "{how}");
+                assert!(s0.pixels > 0 && s1.pixels > 0, "{how}: {s0:?} {s1:?}");
+            }
+        }
+        // A worker index at or past the worker count: nothing drawn.
+        for (worker, workers) in [(2, 2), (5, 2), (1, 1), (1, 0)] {
+            let (px, stats) = worker_frame(&k, 16, true, (worker, workers), fill);
+            assert!(
+                px.iter().all(|&p| p == fill),
+                "{name}: worker {worker} of {workers} drew"
+            );
+            assert_eq!(stats.pixels, 0, "{name}: worker {worker} of {workers}");
+            let mut px = vec![fill; w * h as usize];
+            let n = k.width as usize * 16;
+            let (mut colour, mut depth) = (vec![0u16; n], vec![0u16; n]);
+            let mut t = Counting {
+                fb: Framebuffer::new(&mut px, k.width, h).unwrap(),
+                fills: 0,
+                rows: 0,
+            };
+            let mut bands = Bands::new(&mut t, &mut colour, 16).interleaved(worker, workers);
+            k.render_in_bands(&mut bands, &mut depth, None).unwrap();
+            assert_eq!(
+                t.fills, 0,
+                "{name}: worker {worker} of {workers} sent a band"
+            );
+        }
+    }
 }

@@ -81,7 +81,7 @@ fn area_light_at_the_range_limit() {
 /// the fuzzer's corpus across its size range) through the same check.
 #[test]
 fn seed_corpus() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/fuzz/seeds/render");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../fuzz/seeds/render");
     let mut n = 0;
     let mut drew = 0;
     for f in std::fs::read_dir(dir).expect("fuzz/seeds/render") {

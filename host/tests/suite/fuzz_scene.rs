@@ -1,13 +1,13 @@
 //! Arbitrary bytes → a small scene built with the kernel API → rendered
-//! twice (through `Renderer::draw` into a counting `DrawTarget`, and
-//! through `Renderer::draw_framebuffer` into a guarded `Framebuffer`), with
-//! these properties asserted:
+//! twice (`Shaded::draw` into a counting `DrawTarget`, and into a guarded
+//! `Framebuffer` through its fast path), with these properties asserted:
 //!
 //! * nothing panics or overflows (the callers build with overflow checks);
 //! * no pixel outside the target is sent, and the framebuffer's memory
 //!   past `width × height` is untouched;
-//! * a bad mesh, a short cache or depth buffer, a too large target and a
-//!   projection that does not fit give exactly the documented
+//! * a bad mesh, a mesh without normals shaded smoothly, a short cache or
+//!   depth buffer, a too large target and a projection that does not fit
+//!   give exactly the documented
 //!   `RenderError`, in the documented order, and nothing is drawn;
 //! * both paths give the same result and the same pixels, and the number
 //!   of pixels sent is the number `DrawStats::pixels` reports.
@@ -37,10 +37,10 @@ use fixshade::material::{BlinnPhong, NoSpecular, Phong, Specular};
 use fixshade::mesh::{Bounds, Mesh, MeshError, PackedNormal};
 use fixshade::num::WidePoint;
 use fixshade::render::{
-    CachedVertex, DrawStats, Flat, Gouraud, NoDepth, PhongShading, RenderError, RenderOptions,
-    Renderer, ShadingMode, MAX_TARGET_SIDE,
+    CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, ShadingMode,
+    MAX_TARGET_SIDE,
 };
-use fixshade::{Exponent, Mat4, Material, Rgb, Unit3, Vec3};
+use fixshade::{Exponent, Mat4, Material, Renderer, Rgb, Unit3, Vec3};
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::MeshDesc;
 
@@ -610,8 +610,9 @@ pub struct Report {
 }
 
 /// The error the renderer must give, by the documented order of checks
-/// (`Renderer::draw`: mesh, cache, target size, depth, then, for a target
-/// that is not empty, camera; an empty target draws nothing).
+/// (`Shaded::draw`: mesh, normals for Gouraud and Phong shading, cache,
+/// target size, depth, then, for a target that is not empty, camera; an
+/// empty target draws nothing).
 pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     let mesh = Mesh {
         positions: &s.positions,
@@ -635,6 +636,11 @@ pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
                 return Some(e);
             }
         }
+    }
+    // Gouraud and Phong shading interpolate vertex normals (Flat uses the
+    // face's).
+    if s.shading != 0 && s.normals.is_none() {
+        return Some(RenderError::NoNormals);
     }
     if s.cache_short > 0 && !s.positions.is_empty() {
         return Some(RenderError::CacheTooSmall);
@@ -665,15 +671,17 @@ struct Drawn {
 const GUARD: usize = 64;
 const GUARD_VALUE: u16 = 0xDEAD;
 
-fn draw_both<S: Specular, V: Viewer, M: ShadingMode>(s: &Scene, m: Material<S>) -> Drawn {
-    let r = Renderer::<S, V, _>::new(
-        &s.camera,
-        s.model,
-        &m,
-        s.global_ambient,
-        &s.lights,
-        s.options,
-    );
+fn draw_both<S: Specular, V: Viewer, M: ShadingMode>(
+    s: &Scene,
+    m: Material<S>,
+    viewer: V,
+    shading: M,
+) -> Drawn {
+    let r = Renderer::new(&s.camera, &m, &s.lights)
+        .with_ambient(s.global_ambient)
+        .with_viewer(viewer)
+        .with_shading(shading)
+        .with_options(s.options);
     let mesh = Mesh {
         positions: &s.positions,
         bounds: s.bounds,
@@ -693,17 +701,33 @@ fn draw_both<S: Specular, V: Viewer, M: ShadingMode>(s: &Scene, m: Material<S>) 
         // DepthBuffer::new refuses a short buffer; a short one is given as
         // a shorter DepthTest through a smaller declared height.
         let a = with_depth(&mut d1, s, |d| {
-            r.draw::<M, _, _>(&mesh, &mut target, d, &mut cache)
+            mesh.shaded(&r)
+                .with_model(s.model)
+                .with_depth(d)
+                .with_cache(&mut cache)
+                .draw(&mut target)
         });
         let b = with_depth(&mut d2, s, |d| {
             let mut f = Framebuffer::new(&mut fb, s.width, s.height).expect("framebuffer");
-            r.draw_framebuffer::<M, _>(&mesh, &mut f, d, &mut cache)
+            mesh.shaded(&r)
+                .with_model(s.model)
+                .with_depth(d)
+                .with_cache(&mut cache)
+                .draw(&mut f)
         });
         (a, b)
     } else {
-        let a = r.draw::<M, _, _>(&mesh, &mut target, &mut NoDepth, &mut cache);
+        let a = mesh
+            .shaded(&r)
+            .with_model(s.model)
+            .with_cache(&mut cache)
+            .draw(&mut target);
         let mut f = Framebuffer::new(&mut fb, s.width, s.height).expect("framebuffer");
-        let b = r.draw_framebuffer::<M, _>(&mesh, &mut f, &mut NoDepth, &mut cache);
+        let b = mesh
+            .shaded(&r)
+            .with_model(s.model)
+            .with_cache(&mut cache)
+            .draw(&mut f);
         (a, b)
     };
     assert!(
@@ -734,19 +758,19 @@ fn with_depth<R>(buf: &mut [u16], s: &Scene, f: impl FnOnce(&mut DepthBuffer) ->
     f(&mut d)
 }
 
-fn with_mode<S: Specular, V: Viewer>(s: &Scene, m: Material<S>) -> Drawn {
+fn with_mode<S: Specular, V: Viewer>(s: &Scene, m: Material<S>, viewer: V) -> Drawn {
     match s.shading {
-        0 => draw_both::<S, V, Flat>(s, m),
-        1 => draw_both::<S, V, Gouraud>(s, m),
-        _ => draw_both::<S, V, PhongShading>(s, m),
+        0 => draw_both(s, m, viewer, Flat),
+        1 => draw_both(s, m, viewer, Gouraud),
+        _ => draw_both(s, m, viewer, PhongShading),
     }
 }
 
 fn with_viewer<S: Specular>(s: &Scene, m: Material<S>) -> Drawn {
     if s.local_viewer {
-        with_mode::<S, LocalViewer>(s, m)
+        with_mode(s, m, LocalViewer)
     } else {
-        with_mode::<S, InfiniteViewer>(s, m)
+        with_mode(s, m, InfiniteViewer)
     }
 }
 
@@ -777,7 +801,7 @@ pub fn check(s: &Scene) -> Report {
     assert_eq!(d.target.outside, 0, "pixels sent outside the target: {s:?}");
     assert_eq!(
         d.res_target, d.res_fb,
-        "draw and draw_framebuffer disagree: {s:?}"
+        "the DrawTarget and Framebuffer paths disagree: {s:?}"
     );
     match expected_error(s) {
         Some(e) => {
@@ -795,7 +819,7 @@ pub fn check(s: &Scene) -> Report {
     }
     assert!(
         d.target.pixels == d.fb,
-        "draw and draw_framebuffer drew different pixels: {s:?}"
+        "the DrawTarget and Framebuffer paths drew different pixels: {s:?}"
     );
     Report {
         result: d.res_target,

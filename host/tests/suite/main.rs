@@ -7,17 +7,13 @@ mod heap;
 
 mod bad_input;
 mod bands;
-mod coverage;
 mod fuzz_regressions;
 mod kernel_vs_reference;
 mod lighting_vs_reference;
 mod mesh_format;
 mod no_alloc;
-mod normalize;
 mod properties;
 mod reference;
 mod scene_file;
-mod span_shaders;
-mod specular_table;
 mod stiff_cases;
 mod watertight;

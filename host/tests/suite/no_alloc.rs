@@ -7,7 +7,6 @@
 //! buffers are built before the counted region; the region itself must
 //! count zero.
 
-use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::RgbColor;
 use fixshade::camera::{Camera, Projection};
@@ -19,10 +18,8 @@ use fixshade::light::{
 };
 use fixshade::material::{BlinnPhong, Phong};
 use fixshade::mesh::{vertex_normals, Bounds, Mesh, PackedNormal};
-use fixshade::render::{
-    CachedVertex, DrawStats, Flat, Gouraud, NoDepth, PhongShading, RenderOptions, Renderer,
-};
-use fixshade::{Exponent, Lighting, Mat4, Material, Rgb, Unit3, Vec3};
+use fixshade::render::{CachedVertex, DrawStats, Flat, PhongShading, RenderOptions};
+use fixshade::{Exponent, Lighting, Mat4, Material, Renderer, Rgb, Unit3, Vec3};
 use fixshade_host::generate;
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::MeshDesc;
@@ -217,19 +214,16 @@ fn sphere_s1_gouraud_with_depth_does_not_allocate() {
     let sun = DirectionalLight::new([1.0, 1.0, 1.0]).expect("light");
     let camera = sphere_camera();
     let stats: DrawStats = assert_no_alloc("S1 Gouraud + depth", || {
-        let r = Renderer::<_, InfiniteViewer, _>::new(
-            &camera,
-            Mat4::IDENTITY,
-            &material,
-            rgb(0.1, 0.1, 0.1),
-            &sun,
-            RenderOptions::default(),
-        );
+        let r = Renderer::new(&camera, &material, &sun).with_ambient(rgb(0.1, 0.1, 0.1));
         let mut fb = Framebuffer::new(&mut b.pixels, W, H).expect("fb");
-        fb.clear(Rgb565::BLACK).expect("clear");
+        fb.clear(Rgb565::BLACK);
         let mut depth = DepthBuffer::new(&mut b.depth, W, H).expect("depth");
         depth.clear();
-        r.draw::<Gouraud, _, _>(&m.mesh(), &mut fb, &mut depth, &mut b.cache)
+        m.mesh()
+            .shaded(&r)
+            .with_depth(&mut depth)
+            .with_cache(&mut b.cache)
+            .draw(&mut fb.canvas())
             .expect("draw")
     });
     assert!(stats.pixels > 10_000, "{stats:?}");
@@ -254,19 +248,19 @@ fn bunny_phong_heapless_lights_does_not_allocate() {
     let lights = any_lights();
     let camera = bunny_camera();
     let stats = assert_no_alloc("bunny Phong + depth, heapless lights", || {
-        let r = Renderer::<_, LocalViewer, _>::new(
-            &camera,
-            Mat4::IDENTITY,
-            &material,
-            rgb(0.1, 0.1, 0.1),
-            &lights,
-            RenderOptions::default(),
-        );
+        let r = Renderer::new(&camera, &material, &lights)
+            .with_ambient(rgb(0.1, 0.1, 0.1))
+            .with_viewer(LocalViewer)
+            .with_shading(PhongShading);
         let mut fb = Framebuffer::new(&mut b.pixels, W, H).expect("fb");
-        fb.clear(Rgb565::BLACK).expect("clear");
+        fb.clear(Rgb565::BLACK);
         let mut depth = DepthBuffer::new(&mut b.depth, W, H).expect("depth");
         depth.clear();
-        r.draw::<PhongShading, _, _>(&m.mesh(), &mut fb, &mut depth, &mut b.cache)
+        m.mesh()
+            .shaded(&r)
+            .with_depth(&mut depth)
+            .with_cache(&mut b.cache)
+            .draw(&mut fb.canvas())
             .expect("draw")
     });
     assert!(stats.pixels > 5_000, "{stats:?}");
@@ -295,16 +289,14 @@ fn bunny_tuple_lights_two_sided_without_depth_does_not_allocate() {
         dither: true,
     };
     let stats = assert_no_alloc("bunny Gouraud, tuple lights, no depth", || {
-        let r = Renderer::<_, InfiniteViewer, _>::new(
-            &camera,
-            Mat4::IDENTITY,
-            &material,
-            rgb(0.1, 0.1, 0.1),
-            &lights,
-            options,
-        );
+        let r = Renderer::new(&camera, &material, &lights)
+            .with_ambient(rgb(0.1, 0.1, 0.1))
+            .with_options(options);
         let mut fb = Framebuffer::new(&mut b.pixels, W, H).expect("fb");
-        r.draw::<Gouraud, _, _>(&m.mesh(), &mut fb, &mut NoDepth, &mut b.cache)
+        m.mesh()
+            .shaded(&r)
+            .with_cache(&mut b.cache)
+            .draw(&mut fb.canvas())
             .expect("draw")
     });
     assert!(stats.pixels > 5_000, "{stats:?}");
@@ -323,25 +315,28 @@ fn flat_with_and_without_depth_does_not_allocate() {
         .and_then(|c| c.with_projection(Projection::Perspective { fovy_deg: 50.0 }, 0.2, 20.0))
         .expect("camera");
     let (with, without) = assert_no_alloc("flat torus, depth and no depth", || {
-        let r = Renderer::<_, InfiniteViewer, _>::new(
-            &camera,
-            Mat4::IDENTITY,
-            &material,
-            rgb(0.1, 0.1, 0.1),
-            &lights,
-            RenderOptions {
+        let r = Renderer::new(&camera, &material, &lights)
+            .with_ambient(rgb(0.1, 0.1, 0.1))
+            .with_shading(Flat)
+            .with_options(RenderOptions {
                 cull: false,
                 ..RenderOptions::default()
-            },
-        );
+            });
         let mut fb = Framebuffer::new(&mut b.pixels, W, H).expect("fb");
         let mut depth = DepthBuffer::new(&mut b.depth, W, H).expect("depth");
         depth.clear();
-        let with = r
-            .draw::<Flat, _, _>(&m.mesh(), &mut fb, &mut depth, &mut b.cache)
+        let with = m
+            .mesh()
+            .shaded(&r)
+            .with_depth(&mut depth)
+            .with_cache(&mut b.cache)
+            .draw(&mut fb.canvas())
             .expect("draw");
-        let without = r
-            .draw::<Flat, _, _>(&m.mesh(), &mut fb, &mut NoDepth, &mut b.cache)
+        let without = m
+            .mesh()
+            .shaded(&r)
+            .with_cache(&mut b.cache)
+            .draw(&mut fb.canvas())
             .expect("draw");
         (with, without)
     });
@@ -366,7 +361,7 @@ fn kernel_scene_render_does_not_allocate() {
             let mut b = Buffers::new(scene.mesh.positions.len());
             let stats = assert_no_alloc(&format!("{name} {shading:?}"), || {
                 let mut fb = Framebuffer::new(&mut b.pixels, W, H).expect("fb");
-                k.render(&mut fb, &mut b.depth, &mut b.cache)
+                k.render(&mut fb.canvas(), &mut b.depth, &mut b.cache)
                     .expect("render")
             });
             assert!(stats.pixels > 1_000, "{name} {shading:?}: {stats:?}");

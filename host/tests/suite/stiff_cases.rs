@@ -21,10 +21,9 @@ use crate::fuzz_scene;
 use common::assert_within_bound;
 use fixshade::camera::{Camera, Projection as CamProjection};
 use fixshade::framebuffer::Framebuffer;
-use fixshade::illumination::InfiniteViewer;
 use fixshade::mesh::{Mesh, PackedNormal};
-use fixshade::render::{CachedVertex, Flat, Gouraud, NoDepth, RenderOptions, Renderer};
-use fixshade::{Mat4, Material, Rgb, Vec3};
+use fixshade::render::{CachedVertex, Flat, RenderOptions};
+use fixshade::{Material, Renderer, Vec3};
 use fixshade_host::error_measure::{compare, ErrorStats};
 use fixshade_host::generate;
 use fixshade_host::reference::{self, quantize_rgb565};
@@ -558,7 +557,7 @@ fn degenerate_triangles_and_slivers() {
     }
 }
 
-/// A `Renderer` draw of slivers and degenerate triangles directly, with a
+/// A draw of slivers and degenerate triangles directly, with a
 /// counting target: sub-pixel triangles between pixel centres draw
 /// nothing, a zero-area triangle nothing, and nothing goes outside.
 #[test]
@@ -596,14 +595,11 @@ fn sub_pixel_slivers_between_centres_draw_nothing() {
         cull: false,
         ..RenderOptions::default()
     };
-    let r =
-        Renderer::<_, InfiniteViewer, _>::new(&camera, Mat4::IDENTITY, &m, Rgb::BLACK, &sun, opts);
+    let r = Renderer::new(&camera, &m, &sun).with_options(opts);
     let mut t = CountingTarget::new(16, 16);
     let mut cache = [CachedVertex::default(); 6];
     for mesh in &meshes {
-        let stats = r
-            .draw::<Gouraud, _, _>(mesh, &mut t, &mut NoDepth, &mut cache)
-            .unwrap();
+        let stats = mesh.shaded(&r).with_cache(&mut cache).draw(&mut t).unwrap();
         assert_eq!(t.outside, 0);
         assert_eq!(t.writes, 0, "{stats:?}");
     }
@@ -822,14 +818,7 @@ fn viewport_wider_than_i16() {
     let normals = [PackedNormal::Z; 4];
     let m = Material::new();
     let sun = fixshade::light::DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    let r = Renderer::<_, InfiniteViewer, _>::new(
-        &camera,
-        Mat4::IDENTITY,
-        &m,
-        Rgb::BLACK,
-        &sun,
-        RenderOptions::default(),
-    );
+    let r = Renderer::new(&camera, &m, &sun).with_shading(Flat);
     let mut cache = [CachedVertex::default(); 4];
     let (a, b) = (32760.25, 32779.75);
     for (pos, cols) in [
@@ -839,8 +828,7 @@ fn viewport_wider_than_i16() {
     ] {
         let mesh = Mesh::new(&pos.positions, pos.bounds, &idx).with_normals(&normals);
         let mut t = CountingTarget::new(W, 2);
-        r.draw::<Flat, _, _>(&mesh, &mut t, &mut NoDepth, &mut cache)
-            .unwrap();
+        mesh.shaded(&r).with_cache(&mut cache).draw(&mut t).unwrap();
         assert_eq!(t.outside, 0);
         let drawn: Vec<u32> = (0..W)
             .filter(|&x| t.at(x, 0) != fuzz_scene::BACKGROUND)
@@ -858,7 +846,9 @@ fn viewport_wider_than_i16() {
         );
         let mut px = vec![fuzz_scene::BACKGROUND; (W * 2) as usize];
         let mut fb = Framebuffer::new(&mut px, W, 2).unwrap();
-        r.draw_framebuffer::<Flat, _>(&mesh, &mut fb, &mut NoDepth, &mut cache)
+        mesh.shaded(&r)
+            .with_cache(&mut cache)
+            .draw(&mut fb)
             .unwrap();
         assert!(px == t.pixels, "{cols:?}: the two paths differ");
     }

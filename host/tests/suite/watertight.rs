@@ -33,11 +33,10 @@ use embedded_graphics::primitives::{PointsIter, Rectangle};
 use embedded_graphics::Pixel;
 use fixshade::camera::{Camera, Projection as CamProjection};
 use fixshade::framebuffer::Framebuffer;
-use fixshade::illumination::InfiniteViewer;
 use fixshade::material::NoSpecular;
 use fixshade::mesh::{Bounds, Mesh};
-use fixshade::render::{CachedVertex, DrawStats, Flat, NoDepth, RenderOptions, Renderer};
-use fixshade::{Mat4, Material, Rgb};
+use fixshade::render::{CachedVertex, DrawStats, Flat, RenderOptions};
+use fixshade::{Material, Renderer, Rgb};
 use fixshade_host::generate;
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::reference;
@@ -277,26 +276,20 @@ fn draw(
     cull: bool,
     target: &mut CountingTarget,
 ) -> DrawStats {
-    let material = Material::new();
-    let r = Renderer::<NoSpecular, InfiniteViewer, ()>::new(
-        camera,
-        Mat4::IDENTITY,
-        &material,
-        Rgb::WHITE,
-        &(),
-        RenderOptions {
+    let material: Material<NoSpecular> = Material::new();
+    let r = Renderer::new(camera, &material, &())
+        .with_ambient(Rgb::WHITE)
+        .with_shading(Flat)
+        .with_options(RenderOptions {
             cull,
             ..RenderOptions::default()
-        },
-    );
+        });
     let mut cache = vec![CachedVertex::default(); positions.len()];
-    r.draw::<Flat, _, _>(
-        &Mesh::new(positions, bounds, indices),
-        target,
-        &mut NoDepth,
-        &mut cache,
-    )
-    .expect("draw")
+    Mesh::new(positions, bounds, indices)
+        .shaded(&r)
+        .with_cache(&mut cache)
+        .draw(target)
+        .expect("draw")
 }
 
 /// Renders in the exact orthographic set-up and compares every pixel's
@@ -1003,7 +996,7 @@ fn writes_all_paths(what: &str, scene: &SceneDesc) -> CountingTarget {
             let mut verts = vec![CachedVertex::default(); scene.mesh.positions.len()];
             let v = cached.then_some(&mut verts[..]);
             let stats = k
-                .render_bands(&mut fb, band, &mut colour, &mut z, v)
+                .render_bands(&mut fb.canvas(), band, &mut colour, &mut z, v)
                 .expect("bands");
             let how = format!("{what}, bands of {band} rows, cached {cached}");
             assert!(px == frame.pixels, "{how}: not the whole frame's pixels");

@@ -43,9 +43,8 @@ static mut CACHE: [MaybeUninit<CachedVertex>; VERTICES] =
 #[cfg(feature = "ambient")]
 #[inline(never)]
 fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -> RenderResult {
-    use fixshade::illumination::InfiniteViewer;
-    use fixshade::render::{RenderOptions, Renderer};
-    use fixshade::Mat4;
+    use fixshade::render::RenderOptions;
+    use fixshade::{Mat4, Renderer};
     use fixshade_firmware_qemu::count;
     use fixshade_firmware_qemu::scenes::*;
 
@@ -63,32 +62,25 @@ fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -
     #[cfg(feature = "spot")]
     let lights = (S1_SUN, LAMP, SPOT);
     #[cfg(not(feature = "phong"))]
-    type Mode = fixshade::render::Gouraud;
+    let mode = fixshade::render::Gouraud;
     #[cfg(feature = "phong")]
-    type Mode = fixshade::render::PhongShading;
+    let mode = fixshade::render::PhongShading;
 
+    // A new depth buffer is cleared.
     #[cfg(feature = "depth-buffer")]
-    let mut db = {
-        let mut db = fixshade::depth::DepthBuffer::new(depth, W, H)
-            .map_err(|_| fixshade::render::RenderError::DepthTooSmall)?;
-        db.clear();
-        db
-    };
+    let mut db = fixshade::depth::DepthBuffer::new(depth, W, H)
+        .map_err(|_| fixshade::render::RenderError::DepthTooSmall)?;
     #[cfg(not(feature = "depth-buffer"))]
-    let mut db = {
-        let _ = depth;
-        fixshade::depth::NoDepth
-    };
+    let _ = depth;
     count::begin();
-    let r = Renderer::<_, InfiniteViewer, _>::new(
-        &S1_CAMERA,
-        Mat4::IDENTITY,
-        &material,
-        S1_AMBIENT,
-        &lights,
-        RenderOptions::default(),
-    );
-    let res = r.draw_framebuffer::<Mode, _>(&mesh, fb, &mut db, cache);
+    let r = Renderer::new(&S1_CAMERA, &material, &lights)
+        .with_ambient(S1_AMBIENT)
+        .with_shading(mode)
+        .with_options(RenderOptions::default());
+    let shaded = mesh.shaded(&r).with_model(Mat4::IDENTITY);
+    #[cfg(feature = "depth-buffer")]
+    let shaded = shaded.with_depth(&mut db);
+    let res = shaded.with_cache(cache).draw(fb);
     count::end();
     res
 }

@@ -4,7 +4,7 @@
 //! pixels whose centre passes all three edge functions with the top-left
 //! rule (SPEC.md 5), evaluated directly at every pixel.
 
-use fixshade::rasterizer::{
+use crate::rasterizer::{
     rasterize_rows, ClipRect, RasterVertex, ATTR_LIMIT, CLIP_LIMIT, DRIFT, GUARD,
 };
 use proptest::prelude::*;

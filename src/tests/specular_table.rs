@@ -1,9 +1,9 @@
-//! Accuracy and robustness of `fixshade::specular_table` against an f64
+//! Accuracy and robustness of `crate::specular_table` against an f64
 //! reference.
 
-use fixshade::specular_table::{pow_from_cos, pow_from_delta};
-use fixshade::vector::FormatError;
-use fixshade::{Exponent, Unit3};
+use crate::specular_table::{pow_from_cos, pow_from_delta};
+use crate::vector::FormatError;
+use crate::{Exponent, Unit3};
 use proptest::prelude::*;
 
 const ONE_Q28: f64 = (1u64 << 28) as f64;

@@ -1,8 +1,8 @@
-//! Accuracy and robustness of `fixshade::normalize` against an f64 (and, for
+//! Accuracy and robustness of `crate::normalize` against an f64 (and, for
 //! lengths, an exact 128-bit integer) reference.
 
-use fixshade::normalize::{normalize, normalize_len, rsqrt_q};
-use fixshade::Unit3;
+use crate::normalize::{normalize, normalize_len, rsqrt_q};
+use crate::Unit3;
 use proptest::prelude::*;
 
 const ONE: f64 = (1u32 << 14) as f64;

@@ -3,7 +3,7 @@
 //! and those stay within the documented distance of the exact channel
 //! values.
 
-use fixshade::span::{PackedGouraud, PairGouraud, SpanShader, BLOCK_PAIRS};
+use crate::span::{PackedGouraud, PairGouraud, SpanShader, BLOCK_PAIRS};
 use proptest::prelude::*;
 
 const ONE: i64 = 1 << 16;
@@ -152,16 +152,16 @@ fn pair_shader_refuses_edges_and_keeps_gradients_monotonic() {
 /// clamp, and nothing panics in a debug build (overflow checks on).
 #[test]
 fn extreme_steps_and_depths_do_not_panic() {
-    use embedded_graphics::pixelcolor::Rgb565;
-    use embedded_graphics::prelude::{Point, Size};
-    use embedded_graphics::primitives::Rectangle;
-    use fixshade::depth::DepthBuffer;
-    use fixshade::framebuffer::Framebuffer;
-    use fixshade::span::{
+    use crate::depth::DepthBuffer;
+    use crate::framebuffer::Framebuffer;
+    use crate::span::{
         depth_row_pixels, emit, ClampedGouraud, FlatShader, FramebufferSink, PixelSink, SpanDepth,
         TargetSink,
     };
-    use fixshade::Shade;
+    use crate::Shade;
+    use embedded_graphics::pixelcolor::Rgb565;
+    use embedded_graphics::prelude::{Point, Size};
+    use embedded_graphics::primitives::Rectangle;
 
     // Checked constructors: a step whose product with the length leaves
     // i64, at both ends.
@@ -237,7 +237,7 @@ fn extreme_steps_and_depths_do_not_panic() {
             )
             .unwrap();
             let mut sink = TargetSink {
-                target: &mut fb,
+                target: &mut fb.canvas(),
                 origin: Point::zero(),
             };
             emit(&mut sink, &mut depth, 0, 0, 8, z, flat(0)).unwrap();
@@ -272,7 +272,7 @@ fn extreme_steps_and_depths_do_not_panic() {
         (-1, i32::MIN),
     ] {
         let mut sink = TargetSink {
-            target: &mut fb,
+            target: &mut fb.canvas(),
             origin: Point::new(origin, 0),
         };
         sink.fill(0, x0, 8, core::iter::repeat(0xFFFF)).unwrap();
@@ -281,10 +281,11 @@ fn extreme_steps_and_depths_do_not_panic() {
     // fill_solid far out: clipped in i64.
     let mut fb = Framebuffer::new(&mut px, 8, 1).unwrap();
     use embedded_graphics::draw_target::DrawTarget;
-    fb.fill_solid(
-        &Rectangle::new(Point::new(i32::MAX - 1, 0), Size::new(10, 1)),
-        Rgb565::new(1, 1, 1),
-    )
-    .unwrap();
+    fb.canvas()
+        .fill_solid(
+            &Rectangle::new(Point::new(i32::MAX - 1, 0), Size::new(10, 1)),
+            Rgb565::new(1, 1, 1),
+        )
+        .unwrap();
     assert_eq!(px, [0; 8]);
 }

@@ -1,0 +1,543 @@
+//! The draw call: a [`Renderer`] (camera, material, lights and the choices
+//! made at compile time), a mesh [`Shaded`] by it, and the [`Output`] it
+//! goes to.
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565};
+//! use fixshade::prelude::*;
+//!
+//! // A triangle in the box [−2, 2)³, where q = ±16384 is ±1.
+//! static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+//! static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+//! const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+//!
+//! let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+//! let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+//! let renderer = Renderer::new(&camera, &Material::new(), &sun);
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! let stats = MESH.shaded(&renderer).draw(&mut display).unwrap();
+//! assert!(stats.pixels > 100);
+//! ```
+//!
+//! What is chosen where, every type inferred from the values:
+//!
+//! | choice | made by | options |
+//! | --- | --- | --- |
+//! | specular model | the [`Material`] | none, [`Phong`](crate::material::Phong), [`BlinnPhong`](crate::material::BlinnPhong) |
+//! | lights | the lights value | one light, a tuple, an array, [`AnyLight`](crate::light::AnyLight)s |
+//! | viewer | [`Renderer::with_viewer`] | [`InfiniteViewer`] (default), [`LocalViewer`](crate::illumination::LocalViewer) |
+//! | shading | [`Renderer::with_shading`] | [`Flat`](crate::render::Flat), [`Gouraud`] (default), [`PhongShading`](crate::render::PhongShading) |
+//! | depth test | [`Shaded::with_depth`] | none (default), [`DepthBuffer`], [`DepthBand`] |
+//! | vertex storage | [`Shaded::with_cache`] | recomputed (default), one [`CachedVertex`] per vertex |
+//! | output | the argument of [`Shaded::draw`] | any `DrawTarget`, a [`Framebuffer`] (written in place), [`Bands`] |
+//!
+//! What a scene does not use is not compiled.
+//!
+//! [`DepthBuffer`]: crate::depth::DepthBuffer
+//! [`DepthBand`]: crate::depth::DepthBand
+
+use core::convert::Infallible;
+
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::Drawable;
+
+use crate::band::{BandDepth, Bands, Cached, Recomputed, VertexMode};
+use crate::camera::Camera;
+use crate::color::Rgb;
+use crate::depth::{DepthTest, NoDepth};
+use crate::framebuffer::Framebuffer;
+use crate::illumination::{InfiniteViewer, Lighting, Viewer};
+use crate::light::LightSet;
+use crate::material::{Material, Specular};
+use crate::mesh::Mesh;
+use crate::render::CachedVertex;
+use crate::render::{DrawStats, Gouraud, Prepared, RenderError, RenderOptions, ShadingMode};
+use crate::vector::Mat4;
+
+/// How a scene is drawn: the camera, the material, the lights, the global
+/// ambient light, the viewer, the shading mode and the switches. Built once
+/// and shared by every mesh of a frame ([`Mesh::shaded`]); the lights are
+/// taken to eye space once a draw.
+///
+/// ```
+/// use fixshade::prelude::*;
+/// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+/// let sun = DirectionalLight::new([1.0, 1.0, 1.0]).unwrap();
+/// let renderer = Renderer::new(&camera, &Material::new(), &sun)
+///     .with_ambient(Rgb::grey(0.1))
+///     .with_viewer(LocalViewer)
+///     .with_shading(Flat);
+/// assert!(renderer.options().cull);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Renderer<'l, S: Specular, L: LightSet, V: Viewer = InfiniteViewer, M = Gouraud> {
+    camera: Camera,
+    material: Material<S>,
+    lights: &'l L,
+    ambient: Rgb,
+    options: RenderOptions,
+    viewer: V,
+    shading: M,
+}
+
+impl<'l, S: Specular, L: LightSet> Renderer<'l, S, L> {
+    /// A renderer of `material` under `lights` (world space) seen by
+    /// `camera`: no global ambient light, the infinite viewer, Gouraud
+    /// shading, [`RenderOptions::default`].
+    pub fn new(camera: &Camera, material: &Material<S>, lights: &'l L) -> Self {
+        Renderer {
+            camera: *camera,
+            material: *material,
+            lights,
+            ambient: Rgb::BLACK,
+            options: RenderOptions::default(),
+            viewer: InfiniteViewer,
+            shading: Gouraud,
+        }
+    }
+}
+
+impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L, V, M> {
+    /// The global ambient light `A` (SPEC.md 3).
+    #[must_use]
+    pub fn with_ambient(self, ambient: Rgb) -> Self {
+        Renderer { ambient, ..self }
+    }
+
+    /// The viewer: [`InfiniteViewer`] or
+    /// [`LocalViewer`](crate::illumination::LocalViewer).
+    pub fn with_viewer<W: Viewer>(self, viewer: W) -> Renderer<'l, S, L, W, M> {
+        Renderer {
+            camera: self.camera,
+            material: self.material,
+            lights: self.lights,
+            ambient: self.ambient,
+            options: self.options,
+            viewer,
+            shading: self.shading,
+        }
+    }
+
+    /// The shading mode: [`Flat`](crate::render::Flat), [`Gouraud`] or
+    /// [`PhongShading`](crate::render::PhongShading).
+    pub fn with_shading<N: ShadingMode>(self, shading: N) -> Renderer<'l, S, L, V, N> {
+        Renderer {
+            camera: self.camera,
+            material: self.material,
+            lights: self.lights,
+            ambient: self.ambient,
+            options: self.options,
+            viewer: self.viewer,
+            shading,
+        }
+    }
+
+    /// Culling, two-sided lighting and dithering.
+    #[must_use]
+    pub fn with_options(self, options: RenderOptions) -> Self {
+        Renderer { options, ..self }
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The switches.
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// assert_eq!(renderer.options(), RenderOptions::default());
+    /// ```
+    pub fn options(&self) -> RenderOptions {
+        self.options
+    }
+
+    /// The illumination equation prepared for the camera: what a vertex or
+    /// pixel is lit by (eye space).
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// // A surface facing the light: 0.8 diffuse.
+    /// let s = renderer.lighting().shade(Vec3::ZERO, Unit3::Z);
+    /// assert_eq!(s.to_rgb565(), embedded_graphics::pixelcolor::Rgb565::new(25, 50, 25));
+    /// // No global ambient light by default.
+    /// assert_eq!(renderer.lighting().ambient(), fixshade::Shade::BLACK);
+    /// ```
+    pub fn lighting(&self) -> Lighting<S, V, L> {
+        Lighting::new(&self.material, self.ambient, self.lights, &self.camera.view)
+    }
+
+    /// The draw's constants for a model matrix.
+    #[inline(always)]
+    fn prepare(&self, model: &Mat4) -> Prepared<S, V, L> {
+        Prepared::new(
+            &self.camera,
+            model,
+            &self.material,
+            self.ambient,
+            self.lights,
+            self.options,
+        )
+    }
+}
+
+impl<'m> Mesh<'m> {
+    /// This mesh drawn by `renderer`: the draw call's builder (model
+    /// matrix, depth test, vertex storage), drawn by [`Shaded::draw`].
+    pub fn shaded<'a, R>(&'a self, renderer: &'a R) -> Shaded<'a, 'm, R> {
+        Shaded {
+            mesh: self,
+            renderer,
+            model: Mat4::IDENTITY,
+            depth: NoDepth,
+            vertices: Recomputed,
+        }
+    }
+}
+
+/// A mesh shaded by a [`Renderer`] ([`Mesh::shaded`]), with its model
+/// matrix, its depth test and where its vertices are kept, ready to draw
+/// into an [`Output`].
+///
+/// Without a depth test or a vertex cache it is an `embedded-graphics`
+/// [`Drawable`] as well.
+#[derive(Debug)]
+pub struct Shaded<'a, 'm, R, D = NoDepth, C = Recomputed> {
+    mesh: &'a Mesh<'m>,
+    renderer: &'a R,
+    model: Mat4,
+    depth: D,
+    vertices: C,
+}
+
+impl<'a, 'm, R, D, C> Shaded<'a, 'm, R, D, C> {
+    /// The model matrix, object to world space (default: the identity). A
+    /// singular one gives zero normals (lit by `E + A·Ka` only).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
+    /// use fixshade::prelude::*;
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let glow = Material::new().with_emission(Rgb::grey(0.5));
+    /// let renderer = Renderer::new(&camera, &glow, &sun);
+    /// // Flattens z: singular, though the triangle (at z = 0) keeps its shape.
+    /// let m = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0; 4], [0.0, 0.0, 0.0, 1.0]];
+    /// let squash = Mat4::from_f32(m).unwrap();
+    /// let mut px = [0u16; 32 * 32];
+    /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+    /// let s = MESH.shaded(&renderer).with_model(squash).draw(&mut fb).unwrap();
+    /// // No normal survives it: the sun adds nothing to the emission.
+    /// let e = RawU16::from(renderer.lighting().ambient().to_rgb565()).into_inner();
+    /// assert!(s.pixels > 50 && e != 0);
+    /// assert!(px.iter().all(|&p| p == 0 || p == e));
+    /// ```
+    #[must_use]
+    pub fn with_model(self, model: Mat4) -> Self {
+        Shaded { model, ..self }
+    }
+
+    /// Tests and writes `depth`: a [`DepthBuffer`](crate::depth::DepthBuffer)
+    /// of the target's size for a whole frame, a
+    /// [`DepthBand`](crate::depth::DepthBand) for [`Bands`]. Clearing a
+    /// depth buffer between frames is the caller's
+    /// ([`DepthBuffer::clear`](crate::depth::DepthBuffer::clear)).
+    pub fn with_depth<'z, Z: DepthTest>(self, depth: &'z mut Z) -> Shaded<'a, 'm, R, &'z mut Z, C> {
+        Shaded {
+            mesh: self.mesh,
+            renderer: self.renderer,
+            model: self.model,
+            depth,
+            vertices: self.vertices,
+        }
+    }
+
+    /// Transforms, projects and lights each vertex once, into `cache` (one
+    /// [`CachedVertex`] per mesh vertex, 16 bytes each), instead of once
+    /// per triangle that uses it.
+    pub fn with_cache<'c>(self, cache: &'c mut [CachedVertex]) -> Shaded<'a, 'm, R, D, Cached<'c>> {
+        Shaded {
+            mesh: self.mesh,
+            renderer: self.renderer,
+            model: self.model,
+            depth: self.depth,
+            vertices: Cached(cache),
+        }
+    }
+}
+
+impl<S, L, V, M, D, C> Shaded<'_, '_, Renderer<'_, S, L, V, M>, D, C>
+where
+    S: Specular,
+    L: LightSet,
+    V: Viewer,
+    M: ShadingMode,
+    C: VertexMode,
+{
+    /// Draws the mesh into `output`: any `DrawTarget<Color = Rgb565>` (one
+    /// `fill_contiguous` per span), a [`Framebuffer`] (written in place),
+    /// or [`Bands`]. Clearing the target is the caller's, except for
+    /// bands, each cleared to its background.
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let (mut px, mut z) = ([0u16; 32 * 32], [0u16; 32 * 32]);
+    /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
+    /// let mut depth = DepthBuffer::new(&mut z, 32, 32).unwrap(); // cleared
+    /// let mut cache = [CachedVertex::new(); 3];
+    /// let spin = Mat4::rotation_y(0.3);
+    /// MESH.shaded(&renderer)
+    ///     .with_model(spin)
+    ///     .with_depth(&mut depth)
+    ///     .with_cache(&mut cache)
+    ///     .draw(&mut fb)
+    ///     .unwrap();
+    /// assert_eq!(fb.pixel(16, 16), Some(Rgb565::new(24, 48, 24)));
+    /// ```
+    ///
+    /// A `DrawTarget` gets no pixel outside its bounding box (the
+    /// viewport, SPEC.md 1) and none twice (a `MockDisplay`, 64 × 64,
+    /// panics on either), and the count is of the pixels sent:
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, prelude::*};
+    /// use fixshade::prelude::*;
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// let s = MESH.shaded(&renderer).draw(&mut display).unwrap();
+    /// let drawn = (0..64)
+    ///     .flat_map(|y| (0..64).map(move |x| Point::new(x, y)))
+    ///     .filter(|&p| display.get_pixel(p).is_some())
+    ///     .count();
+    /// assert_eq!(s.pixels as usize, drawn);
+    /// ```
+    ///
+    /// A [`Framebuffer`] is written in place (no `fill_contiguous` call per
+    /// span): the same pixels as through its `DrawTarget`,
+    /// [`Framebuffer::canvas`]:
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
+    /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
+    /// MESH.shaded(&renderer).draw(&mut fb.canvas()).unwrap();
+    /// let mut fb = Framebuffer::new(&mut b, 32, 32).unwrap();
+    /// MESH.shaded(&renderer).draw(&mut fb).unwrap();
+    /// assert_eq!(a, b);
+    /// ```
+    ///
+    /// [`Bands`] render the frame a few rows at a time through a small
+    /// colour band (and a [`DepthBand`](crate::depth::DepthBand)), each
+    /// band sent to the display as one `fill_contiguous`: the pixels of the
+    /// whole frame drawn over the background, with cached or recomputed
+    /// vertices. A buffer too small is an error, and nothing is drawn:
+    ///
+    /// ```
+    /// use embedded_graphics::prelude::*;
+    /// use fixshade::prelude::*;
+    /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
+    /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
+    /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
+    /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
+    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// // The display: here a framebuffer's canvas; any DrawTarget<Color = Rgb565>.
+    /// let mut px = [0u16; 32 * 32];
+    /// let mut display = Framebuffer::new(&mut px, 32, 32).unwrap();
+    /// // A band of 32 × 4 pixels, colour and depth: 512 bytes.
+    /// let (mut colour, mut z) = ([0u16; 32 * 4], [0u16; 32 * 4]);
+    /// let mut cache = [CachedVertex::new(); 3];
+    /// MESH.shaded(&renderer)
+    ///     .with_depth(&mut DepthBand::new(&mut z))
+    ///     .with_cache(&mut cache)
+    ///     .draw(&mut Bands::new(&mut display.canvas(), &mut colour, 4).with_background(Rgb565::BLUE))
+    ///     .unwrap();
+    /// assert_eq!(display.pixel(16, 16), Some(Rgb565::new(25, 50, 25)));
+    /// assert_eq!(display.pixel(0, 0), Some(Rgb565::BLUE));
+    ///
+    /// // The whole frame, cleared to the background, with a depth buffer.
+    /// let (mut whole, mut zs) = ([0u16; 32 * 32], [0u16; 32 * 32]);
+    /// let mut fb = Framebuffer::new(&mut whole, 32, 32).unwrap();
+    /// fb.clear(Rgb565::BLUE);
+    /// let mut depth = DepthBuffer::new(&mut zs, 32, 32).unwrap();
+    /// MESH.shaded(&renderer).with_depth(&mut depth).draw(&mut fb).unwrap();
+    /// assert_eq!(display.as_slice(), fb.as_slice());
+    ///
+    /// // No vertex storage at all: the same pixels.
+    /// display.clear(Rgb565::BLACK);
+    /// MESH.shaded(&renderer)
+    ///     .with_depth(&mut DepthBand::new(&mut z))
+    ///     .draw(&mut Bands::new(&mut display.canvas(), &mut colour, 4).with_background(Rgb565::BLUE))
+    ///     .unwrap();
+    /// assert_eq!(display.as_slice(), fb.as_slice());
+    ///
+    /// // A depth band too small for the band.
+    /// display.clear(Rgb565::BLACK);
+    /// let e = MESH
+    ///     .shaded(&renderer)
+    ///     .with_depth(&mut DepthBand::new(&mut z[..100]))
+    ///     .draw(&mut Bands::new(&mut display.canvas(), &mut colour, 4));
+    /// assert_eq!(e, Err(RenderError::DepthTooSmall));
+    /// assert!(px.iter().all(|&p| p == 0));
+    /// ```
+    pub fn draw<O: Output<D>>(
+        mut self,
+        output: &mut O,
+    ) -> Result<DrawStats, RenderError<O::Error>> {
+        let p = self.renderer.prepare(&self.model);
+        output.render::<S, V, L, M, C>(&p, self.mesh, &mut self.depth, &mut self.vertices)
+    }
+}
+
+impl<S, L, V, M> Drawable for Shaded<'_, '_, Renderer<'_, S, L, V, M>>
+where
+    S: Specular,
+    L: LightSet,
+    V: Viewer,
+    M: ShadingMode,
+{
+    type Color = Rgb565;
+    /// The draw's counts, or why nothing was drawn (the target's own
+    /// errors are `draw`'s).
+    type Output = Result<DrawStats, RenderError<Infallible>>;
+
+    fn draw<T: DrawTarget<Color = Rgb565>>(
+        &self,
+        target: &mut T,
+    ) -> Result<Self::Output, T::Error> {
+        let p = self.renderer.prepare(&self.model);
+        match p.draw_target::<M, T, _, _>(self.mesh, target, &mut NoDepth, &mut Recomputed) {
+            Ok(stats) => Ok(Ok(stats)),
+            Err(e) => e.split().map(Err),
+        }
+    }
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// Where a draw's pixels go, and with which depth test `D`: a whole frame
+/// into any `DrawTarget<Color = Rgb565>` or a [`Framebuffer`] (a
+/// [`DepthBuffer`](crate::depth::DepthBuffer) or none), or the frame in
+/// [`Bands`] (a [`DepthBand`](crate::depth::DepthBand) or none).
+pub trait Output<D>: sealed::Sealed {
+    /// The target's error.
+    type Error;
+
+    /// Draws `mesh` with `p`'s constants (the renderer's internals).
+    #[doc(hidden)]
+    fn render<S, V, L, M, C>(
+        &mut self,
+        p: &Prepared<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        vertices: &mut C,
+    ) -> Result<DrawStats, RenderError<Self::Error>>
+    where
+        S: Specular,
+        V: Viewer,
+        L: LightSet,
+        M: ShadingMode,
+        C: VertexMode;
+}
+
+/// A depth test for a whole frame: none, or a buffer of the target's size.
+pub trait FrameDepth: DepthTest {}
+impl FrameDepth for NoDepth {}
+impl FrameDepth for crate::depth::DepthBuffer<'_> {}
+impl<Z: FrameDepth> FrameDepth for &mut Z {}
+
+impl<T: DrawTarget<Color = Rgb565>> sealed::Sealed for T {}
+impl<T: DrawTarget<Color = Rgb565>, D: FrameDepth> Output<D> for T {
+    type Error = T::Error;
+    #[inline(always)]
+    fn render<S, V, L, M, C>(
+        &mut self,
+        p: &Prepared<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        vertices: &mut C,
+    ) -> Result<DrawStats, RenderError<T::Error>>
+    where
+        S: Specular,
+        V: Viewer,
+        L: LightSet,
+        M: ShadingMode,
+        C: VertexMode,
+    {
+        p.draw_target::<M, T, D, C>(mesh, self, depth, vertices)
+    }
+}
+
+impl sealed::Sealed for Framebuffer<'_> {}
+impl<D: FrameDepth> Output<D> for Framebuffer<'_> {
+    type Error = Infallible;
+    #[inline(always)]
+    fn render<S, V, L, M, C>(
+        &mut self,
+        p: &Prepared<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        vertices: &mut C,
+    ) -> Result<DrawStats, RenderError<Infallible>>
+    where
+        S: Specular,
+        V: Viewer,
+        L: LightSet,
+        M: ShadingMode,
+        C: VertexMode,
+    {
+        p.draw_framebuffer::<M, D, C>(mesh, self, depth, vertices)
+    }
+}
+
+impl<T> sealed::Sealed for Bands<'_, '_, T> {}
+impl<T: DrawTarget<Color = Rgb565>, D: BandDepth> Output<D> for Bands<'_, '_, T> {
+    type Error = T::Error;
+    #[inline(always)]
+    fn render<S, V, L, M, C>(
+        &mut self,
+        p: &Prepared<S, V, L>,
+        mesh: &Mesh,
+        depth: &mut D,
+        vertices: &mut C,
+    ) -> Result<DrawStats, RenderError<T::Error>>
+    where
+        S: Specular,
+        V: Viewer,
+        L: LightSet,
+        M: ShadingMode,
+        C: VertexMode,
+    {
+        p.draw_bands::<M, T, D, C>(mesh, self, depth, vertices)
+    }
+}
