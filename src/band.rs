@@ -444,12 +444,19 @@ impl Job<'_, '_> {
         let bb = self.bb;
         let (w, height) = (bb.size.width, bb.size.height);
         let (indices, per) = (self.mesh.indices, self.runs.per);
-        let (mut y0, mut band) = (0u32, 0u32);
+        // Bands to skip before this worker's next one (none ever for a
+        // worker at or past `workers`: at most 2^20 bands).
+        let mut skip = if bands.worker < bands.workers {
+            bands.worker
+        } else {
+            u32::MAX
+        };
+        let mut y0 = 0u32;
         while y0 < height {
             let rows = self.h.min(height - y0);
             // Another worker's band (`Bands::interleaved`).
-            let mine = band % bands.workers == bands.worker;
-            band = band.wrapping_add(1);
+            let mine = skip == 0;
+            skip = if mine { bands.workers - 1 } else { skip - 1 };
             if !mine {
                 y0 += rows;
                 continue;

@@ -524,15 +524,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
         X: VertexMode,
     {
         mesh.validate().map_err(RenderError::Mesh)?;
-        if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
-            return Err(RenderError::NoNormals);
-        }
         let n = mesh.positions.len();
         let cache = vertices.cache();
         if X::CACHED && cache.len() < n {
             return Err(RenderError::CacheTooSmall);
         }
-        let cache = &mut cache[..if X::CACHED { n } else { 0 }];
         let size = bb.size;
         let (w, h) = (size.width, size.height);
         check_bounds(&bb)?;
@@ -558,7 +554,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
         // all used, and the triangle loop then tests no flag (callgrind,
         // S3 on x86-64: 0.17 M instructions a frame).
         if X::CACHED {
-            frame.project_all(cache);
+            frame.project_all(&mut cache[..n]);
         }
         frame.each_tile(|frame| {
             for tri in mesh.indices {

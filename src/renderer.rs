@@ -52,7 +52,9 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::Mesh;
 use crate::render::CachedVertex;
-use crate::render::{DrawStats, Gouraud, Prepared, RenderError, RenderOptions, ShadingMode};
+use crate::render::{
+    DrawStats, Gouraud, Prepared, RenderError, RenderOptions, ShadingKind, ShadingMode,
+};
 use crate::vector::Mat4;
 
 /// How a scene is drawn: the camera, the material, the lights, the global
@@ -408,11 +410,20 @@ where
     /// assert_eq!(e, Err(RenderError::DepthTooSmall));
     /// assert!(px.iter().all(|&p| p == 0));
     /// ```
+    #[inline(always)]
     pub fn draw<O: Output<D>>(
         mut self,
         output: &mut O,
     ) -> Result<DrawStats, RenderError<O::Error>> {
-        let p = self.renderer.prepare(&self.model);
+        if M::KIND != ShadingKind::Flat && self.mesh.normals.is_none() {
+            // A mesh error comes first, as in the draw itself.
+            self.mesh.validate().map_err(RenderError::Mesh)?;
+            return Err(RenderError::NoNormals);
+        }
+        // A copy: a pointer into the builder would keep the builder (and
+        // the mesh's length) in memory through the draw.
+        let model = self.model;
+        let p = self.renderer.prepare(&model);
         output.render::<S, V, L, M, C>(&p, self.mesh, &mut self.depth, &mut self.vertices)
     }
 }
@@ -433,7 +444,14 @@ where
         &self,
         target: &mut T,
     ) -> Result<Self::Output, T::Error> {
-        let p = self.renderer.prepare(&self.model);
+        if M::KIND != ShadingKind::Flat && self.mesh.normals.is_none() {
+            return Ok(Err(match self.mesh.validate() {
+                Err(e) => RenderError::Mesh(e),
+                Ok(()) => RenderError::NoNormals,
+            }));
+        }
+        let model = self.model;
+        let p = self.renderer.prepare(&model);
         match p.draw_target::<M, T, _, _>(self.mesh, target, &mut NoDepth, &mut Recomputed) {
             Ok(stats) => Ok(Ok(stats)),
             Err(e) => e.split().map(Err),
@@ -471,10 +489,33 @@ pub trait Output<D>: sealed::Sealed {
 }
 
 /// A depth test for a whole frame: none, or a buffer of the target's size.
-pub trait FrameDepth: DepthTest {}
-impl FrameDepth for NoDepth {}
-impl FrameDepth for crate::depth::DepthBuffer<'_> {}
-impl<Z: FrameDepth> FrameDepth for &mut Z {}
+pub trait FrameDepth: DepthTest {
+    #[doc(hidden)]
+    type Test: DepthTest;
+    #[doc(hidden)]
+    fn test(&mut self) -> &mut Self::Test;
+}
+impl FrameDepth for NoDepth {
+    type Test = NoDepth;
+    #[inline(always)]
+    fn test(&mut self) -> &mut NoDepth {
+        self
+    }
+}
+impl<'a> FrameDepth for crate::depth::DepthBuffer<'a> {
+    type Test = crate::depth::DepthBuffer<'a>;
+    #[inline(always)]
+    fn test(&mut self) -> &mut Self::Test {
+        self
+    }
+}
+impl<Z: FrameDepth> FrameDepth for &mut Z {
+    type Test = Z::Test;
+    #[inline(always)]
+    fn test(&mut self) -> &mut Z::Test {
+        (**self).test()
+    }
+}
 
 impl<T: DrawTarget<Color = Rgb565>> sealed::Sealed for T {}
 impl<T: DrawTarget<Color = Rgb565>, D: FrameDepth> Output<D> for T {
@@ -494,7 +535,7 @@ impl<T: DrawTarget<Color = Rgb565>, D: FrameDepth> Output<D> for T {
         M: ShadingMode,
         C: VertexMode,
     {
-        p.draw_target::<M, T, D, C>(mesh, self, depth, vertices)
+        p.draw_target::<M, T, D::Test, C>(mesh, self, depth.test(), vertices)
     }
 }
 
@@ -516,7 +557,7 @@ impl<D: FrameDepth> Output<D> for Framebuffer<'_> {
         M: ShadingMode,
         C: VertexMode,
     {
-        p.draw_framebuffer::<M, D, C>(mesh, self, depth, vertices)
+        p.draw_framebuffer::<M, D::Test, C>(mesh, self, depth.test(), vertices)
     }
 }
 
