@@ -415,11 +415,7 @@ where
         mut self,
         output: &mut O,
     ) -> Result<DrawStats, RenderError<O::Error>> {
-        if M::KIND != ShadingKind::Flat && self.mesh.normals.is_none() {
-            // A mesh error comes first, as in the draw itself.
-            self.mesh.validate().map_err(RenderError::Mesh)?;
-            return Err(RenderError::NoNormals);
-        }
+        normals_for::<M>(self.mesh).map_err(RenderError::lift)?;
         // A copy: a pointer into the builder would keep the builder (and
         // the mesh's length) in memory through the draw.
         let model = self.model;
@@ -444,11 +440,8 @@ where
         &self,
         target: &mut T,
     ) -> Result<Self::Output, T::Error> {
-        if M::KIND != ShadingKind::Flat && self.mesh.normals.is_none() {
-            return Ok(Err(match self.mesh.validate() {
-                Err(e) => RenderError::Mesh(e),
-                Ok(()) => RenderError::NoNormals,
-            }));
+        if let Err(e) = normals_for::<M>(self.mesh) {
+            return Ok(Err(e));
         }
         let model = self.model;
         let p = self.renderer.prepare(&model);
@@ -457,6 +450,18 @@ where
             Err(e) => e.split().map(Err),
         }
     }
+}
+
+/// `NoNormals` for a mesh without normals in a mode that needs them (a
+/// mesh error first, as the draw reports it), before the draw's constants
+/// are made.
+#[inline(always)]
+fn normals_for<M: ShadingMode>(mesh: &Mesh) -> Result<(), RenderError<Infallible>> {
+    if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
+        mesh.validate().map_err(RenderError::Mesh)?;
+        return Err(RenderError::NoNormals);
+    }
+    Ok(())
 }
 
 mod sealed {
