@@ -327,7 +327,7 @@ fn check_band<E, T, D: BandDepth, X: VertexMode>(
     Ok(rows)
 }
 
-impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
+impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
     /// Renders the frame into `bands`' target band by band (see the
     /// [module docs](crate::band)): the pixels are those that clearing the
     /// target to the background, the depth buffer to the far value and

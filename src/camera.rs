@@ -26,8 +26,10 @@ pub enum CameraError {
     /// `eye == target`, or `up` parallel to the view direction.
     Degenerate,
     /// `near ≤ 0`, `far ≤ near`, `far ≥ 128` (beyond the `I8F24` range
-    /// of eye-space positions), a field of view outside (0°, 180°), or a
-    /// non-positive orthographic height.
+    /// of eye-space positions), a field of view outside (0°, 180°), a
+    /// non-positive orthographic height, or a projection coefficient of
+    /// 127 or more (a field of view under about 1°, `far` within 1 % of
+    /// `near`, or, at draw time, an extreme aspect ratio).
     BadProjection,
 }
 
@@ -92,12 +94,95 @@ pub enum Projection {
 pub struct Camera {
     /// World → eye.
     pub view: Mat4,
-    /// The projection.
-    pub projection: Projection,
-    /// Near plane distance.
-    pub near: f32,
-    /// Far plane distance.
-    pub far: f32,
+    // Private: `lens` is worked out from them, and they are valid
+    // ([`Camera::with_projection`]).
+    projection: Projection,
+    near: f32,
+    far: f32,
+    lens: Lens,
+}
+
+/// What of the projection depends on the camera alone, worked out once
+/// when the projection is set rather than once a draw: every coefficient
+/// but the horizontal scale, which needs the viewport's aspect ratio.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lens {
+    /// `cot(fovy / 2)` (perspective) or the view volume's height
+    /// (orthographic), `f64`: the horizontal scale is `k / aspect` or
+    /// `2 / (k · aspect)`.
+    k: f64,
+    sy: i32,
+    a: i32,
+    b: i32,
+    perspective: bool,
+}
+
+/// `Camera::look_at`'s projection: 60° perspective, near 0.1, far 10.
+const DEFAULT_PROJECTION: (Projection, f32, f32) =
+    (Projection::Perspective { fovy_deg: 60.0 }, 0.1, 10.0);
+const DEFAULT_LENS: Lens = match Lens::new(DEFAULT_PROJECTION) {
+    Ok(l) => l,
+    Err(_) => panic!("the default projection is valid"),
+};
+
+/// The largest coefficient, raw `Q.24`: [`ProjectionCoeffs::clip`] relies
+/// on coefficients below 2⁷.
+const COEFF_LIMIT: u32 = 127 << COORD_FRAC;
+
+impl Lens {
+    /// Checks a projection and works out its coefficients (`f64`, then
+    /// rounded to `Q.24`).
+    const fn new((projection, near, far): (Projection, f32, f32)) -> Result<Lens, CameraError> {
+        let (ok, param) = match projection {
+            Projection::Perspective { fovy_deg } => (fovy_deg > 0.0 && fovy_deg < 180.0, fovy_deg),
+            Projection::Orthographic { height } => (height > 0.0, height),
+        };
+        if !near.is_finite() || !far.is_finite() || !param.is_finite() {
+            return Err(CameraError::NotFinite);
+        }
+        if !ok || near <= 0.0 || far <= near || far >= 128.0 {
+            return Err(CameraError::BadProjection);
+        }
+        let (n, f) = (near as f64, far as f64);
+        let lens = match projection {
+            Projection::Perspective { fovy_deg } => {
+                let half = fovy_deg as f64 * core::f64::consts::PI / 360.0;
+                let fl = cos_over_sin(half);
+                Lens {
+                    k: fl,
+                    sy: q24(fl),
+                    a: q24((f + n) / (n - f)),
+                    b: q24(2.0 * f * n / (n - f)),
+                    perspective: true,
+                }
+            }
+            Projection::Orthographic { height } => {
+                let h = height as f64;
+                Lens {
+                    k: h,
+                    sy: q24(2.0 / h),
+                    a: q24(-2.0 / (f - n)),
+                    b: q24(-(f + n) / (f - n)),
+                    perspective: false,
+                }
+            }
+        };
+        if lens.sy.unsigned_abs() > COEFF_LIMIT
+            || lens.a.unsigned_abs() > COEFF_LIMIT
+            || lens.b.unsigned_abs() > COEFF_LIMIT
+        {
+            return Err(CameraError::BadProjection);
+        }
+        Ok(lens)
+    }
+}
+
+/// `v` in `Q.24`, rounded half away from zero, saturated to `i32` (NaN
+/// to 0).
+const fn q24(v: f64) -> i32 {
+    let s = v * (1u64 << COORD_FRAC) as f64;
+    let s = if s >= 0.0 { s + 0.5 } else { s - 0.5 };
+    s as i32
 }
 
 impl Camera {
@@ -108,8 +193,8 @@ impl Camera {
     /// use fixshade::camera::{Camera, CameraError, Projection};
     /// use fixshade::Vec3;
     /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    /// assert_eq!(cam.projection, Projection::Perspective { fovy_deg: 60.0 });
-    /// assert_eq!((cam.near, cam.far), (0.1, 10.0));
+    /// assert_eq!(cam.projection(), Projection::Perspective { fovy_deg: 60.0 });
+    /// assert_eq!((cam.near(), cam.far()), (0.1, 10.0));
     /// // The target lies straight ahead, 3 units down the eye's −z axis.
     /// assert_eq!(cam.view.transform_point(Vec3::ZERO), Vec3::from_f32(0.0, 0.0, -3.0).unwrap());
     /// // `up` along the view direction leaves the roll undefined.
@@ -164,12 +249,7 @@ impl Camera {
             [-f[0], -f[1], -f[2], dot(f, eye)],
             [0.0, 0.0, 0.0, 1.0],
         ])?;
-        Ok(Camera {
-            view,
-            projection: Projection::Perspective { fovy_deg: 60.0 },
-            near: 0.1,
-            far: 10.0,
-        })
+        Ok(Camera::from_view(view))
     }
 
     /// A camera with a given view matrix and the default projection.
@@ -183,11 +263,13 @@ impl Camera {
     /// assert_eq!(CAM, looking);
     /// ```
     pub const fn from_view(view: Mat4) -> Camera {
+        let (projection, near, far) = DEFAULT_PROJECTION;
         Camera {
             view,
-            projection: Projection::Perspective { fovy_deg: 60.0 },
-            near: 0.1,
-            far: 10.0,
+            projection,
+            near,
+            far,
+            lens: DEFAULT_LENS,
         }
     }
 
@@ -198,7 +280,10 @@ impl Camera {
     /// let cam = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// let p = Projection::Perspective { fovy_deg: 45.0 };
     /// let c = cam.with_projection(p, 0.5, 20.0).unwrap();
-    /// assert_eq!((c.projection, c.near, c.far), (p, 0.5, 20.0));
+    /// assert_eq!((c.projection(), c.near(), c.far()), (p, 0.5, 20.0));
+    /// // A field of view under about 1° (coefficients of 127 and more).
+    /// let tiny = Projection::Perspective { fovy_deg: 0.5 };
+    /// assert_eq!(cam.with_projection(tiny, 1.0, 3.0), Err(CameraError::BadProjection));
     /// assert_eq!(cam.with_projection(p, 2.0, 1.0), Err(CameraError::BadProjection));
     /// assert_eq!(cam.with_projection(p, 0.0, 1.0), Err(CameraError::BadProjection));
     /// let wide = Projection::Perspective { fovy_deg: 180.0 };
@@ -210,35 +295,44 @@ impl Camera {
     /// assert_eq!(cam.with_projection(inf, 0.1, 1.0), Err(CameraError::NotFinite));
     /// assert_eq!(cam.with_projection(p, 0.1, 128.0), Err(CameraError::BadProjection));
     /// ```
-    pub fn with_projection(
+    pub const fn with_projection(
         mut self,
         projection: Projection,
         near: f32,
         far: f32,
     ) -> Result<Camera, CameraError> {
-        let (ok, param) = match projection {
-            Projection::Perspective { fovy_deg } => (fovy_deg > 0.0 && fovy_deg < 180.0, fovy_deg),
-            Projection::Orthographic { height } => (height > 0.0, height),
+        self.lens = match Lens::new((projection, near, far)) {
+            Ok(lens) => lens,
+            Err(e) => return Err(e),
         };
-        if !near.is_finite() || !far.is_finite() || !param.is_finite() {
-            return Err(CameraError::NotFinite);
-        }
-        if !ok || near <= 0.0 || far <= near || far >= 128.0 {
-            return Err(CameraError::BadProjection);
-        }
         self.projection = projection;
         self.near = near;
         self.far = far;
         Ok(self)
     }
 
+    /// The projection.
+    pub const fn projection(&self) -> Projection {
+        self.projection
+    }
+
+    /// The near plane's distance.
+    pub const fn near(&self) -> f32 {
+        self.near
+    }
+
+    /// The far plane's distance.
+    pub const fn far(&self) -> f32 {
+        self.far
+    }
+
     /// The projection's coefficients for a viewport of `width × height`
     /// pixels (aspect = width / height; a zero size counts as 1).
     ///
-    /// Errors with [`CameraError::BadProjection`] where a coefficient would
-    /// reach 127 in value (a field of view under about 1°, an extreme
-    /// aspect ratio, or `far` within 1% of `near`): [`ProjectionCoeffs::clip`]
-    /// relies on them being below 2⁷.
+    /// All but the horizontal scale were worked out when the projection
+    /// was set; errors with [`CameraError::BadProjection`] where that scale
+    /// would reach 127 in value (an extreme aspect ratio):
+    /// [`ProjectionCoeffs::clip`] relies on coefficients below 2⁷.
     ///
     /// ```
     /// use fixshade::camera::{Camera, CameraError, Projection};
@@ -249,63 +343,33 @@ impl Camera {
     /// // cot(45°) = 1 vertically, halved horizontally by the aspect ratio 2.
     /// assert!((p.sy - (1 << 24)).abs() <= 1 && (p.sx - (1 << 23)).abs() <= 1);
     /// assert_eq!(square.projection_for(0, 0), square.projection_for(1, 1));
-    /// let tiny = Projection::Perspective { fovy_deg: 0.5 };
-    /// let narrow = cam.with_projection(tiny, 1.0, 3.0).unwrap();
-    /// assert_eq!(narrow.projection_for(100, 100), Err(CameraError::BadProjection));
+    /// assert_eq!(square.projection_for(1, 1000), Err(CameraError::BadProjection));
     /// ```
     pub fn projection_for(&self, width: u32, height: u32) -> Result<ProjectionCoeffs, CameraError> {
-        let p = self.coeffs(width, height);
-        let lim = 127u32 << COORD_FRAC;
-        if [p.sx, p.sy, p.a, p.b]
-            .iter()
-            .any(|c| c.unsigned_abs() > lim)
-        {
+        let aspect = width.max(1) as f64 / height.max(1) as f64;
+        let l = &self.lens;
+        let sx = if l.perspective {
+            q24(l.k / aspect)
+        } else {
+            q24(2.0 / (l.k * aspect))
+        };
+        if sx.unsigned_abs() > COEFF_LIMIT {
             return Err(CameraError::BadProjection);
         }
-        Ok(p)
-    }
-
-    fn coeffs(&self, width: u32, height: u32) -> ProjectionCoeffs {
-        let aspect = width.max(1) as f64 / height.max(1) as f64;
-        let (n, f) = (self.near as f64, self.far as f64);
-        let q = |v: f64| -> i32 {
-            let s = v * (1u64 << COORD_FRAC) as f64;
-            let s = if s >= 0.0 { s + 0.5 } else { s - 0.5 };
-            s.clamp(i32::MIN as f64, i32::MAX as f64) as i32
-        };
-        match self.projection {
-            Projection::Perspective { fovy_deg } => {
-                let half = fovy_deg as f64 * core::f64::consts::PI / 360.0;
-                let fl = cos_over_sin(half);
-                ProjectionCoeffs {
-                    sx: q(fl / aspect),
-                    sy: q(fl),
-                    tx: 0,
-                    ty: 0,
-                    a: q((f + n) / (n - f)),
-                    b: q(2.0 * f * n / (n - f)),
-                    perspective: true,
-                }
-            }
-            Projection::Orthographic { height } => {
-                let h = height as f64;
-                let w = h * aspect;
-                ProjectionCoeffs {
-                    sx: q(2.0 / w),
-                    sy: q(2.0 / h),
-                    tx: 0,
-                    ty: 0,
-                    a: q(-2.0 / (f - n)),
-                    b: q(-(f + n) / (f - n)),
-                    perspective: false,
-                }
-            }
-        }
+        Ok(ProjectionCoeffs {
+            sx,
+            sy: l.sy,
+            tx: 0,
+            ty: 0,
+            a: l.a,
+            b: l.b,
+            perspective: l.perspective,
+        })
     }
 }
 
 /// `√x` in `f64` to the last bit or so: Newton's iteration from a guess
-/// made by halving the exponent (no libm in `no_std`; used once per frame).
+/// made by halving the exponent (no libm in `no_std`; used once per camera).
 fn sqrt(x: f64) -> f64 {
     if x.is_nan() || x <= 0.0 || !x.is_finite() {
         return if x == 0.0 { 0.0 } else { f64::NAN };
@@ -318,15 +382,17 @@ fn sqrt(x: f64) -> f64 {
 }
 
 /// `cos x / sin x` for `x` in (0, π/2), by Taylor series (no libm in
-/// `no_std`; called once per frame).
-fn cos_over_sin(x: f64) -> f64 {
+/// `no_std`; evaluated when a projection is set).
+const fn cos_over_sin(x: f64) -> f64 {
     let (mut s, mut c) = (0.0, 0.0);
     let (mut ts, mut tc) = (x, 1.0);
-    for k in 1..20 {
+    let mut k = 1;
+    while k < 20 {
         s += ts;
         c += tc;
         ts *= -x * x / ((2 * k) as f64 * (2 * k + 1) as f64);
         tc *= -x * x / ((2 * k - 1) as f64 * (2 * k) as f64);
+        k += 1;
     }
     c / s
 }

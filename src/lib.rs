@@ -53,9 +53,37 @@
 //! range and overflow proof is stated where it is defined. The conventions
 //! (coordinate systems, the illumination equation, rounding) are the
 //! project's SPEC.md, shipped in the package's `docs/`.
+//!
+//! # Public items
+//!
+//! Every public item, by module (the crate root re-exports the most used;
+//! [`prelude`] has what a program needs):
+//!
+//! | module | what | items |
+//! | --- | --- | --- |
+//! | [`renderer`] | the draw call | [`FrameDepth`](renderer::FrameDepth), [`Output`](renderer::Output), [`Renderer`](renderer::Renderer), [`Shaded`](renderer::Shaded) |
+//! | [`render`] | shading modes, options, errors | [`CachedVertex`](render::CachedVertex), [`DrawStats`](render::DrawStats), [`Flat`](render::Flat), [`Gouraud`](render::Gouraud), [`PhongShading`](render::PhongShading), [`RenderError`](render::RenderError), [`RenderOptions`](render::RenderOptions), [`ShadingKind`](render::ShadingKind), [`ShadingMode`](render::ShadingMode), [`MAX_TARGET_SIDE`](render::MAX_TARGET_SIDE), [`PAIR_SPAN`](render::PAIR_SPAN) |
+//! | [`mesh`] | the mesh in flash | [`Aligned`](mesh::Aligned), [`Bounds`](mesh::Bounds), [`Mesh`](mesh::Mesh), [`MeshError`](mesh::MeshError), [`PackedNormal`](mesh::PackedNormal), [`FLAG_NORMALS`](mesh::FLAG_NORMALS), [`HEADER_LEN`](mesh::HEADER_LEN), [`MAGIC`](mesh::MAGIC), [`VERSION`](mesh::VERSION), [`face_normal`](mesh::face_normal), [`vertex_normals`](mesh::vertex_normals) |
+//! | [`camera`] | view and projection | [`Camera`](camera::Camera), [`CameraError`](camera::CameraError), [`Projection`](camera::Projection), [`ProjectionCoeffs`](camera::ProjectionCoeffs) |
+//! | [`material`] | surfaces | [`BlinnPhong`](material::BlinnPhong), [`Material`](material::Material), [`NoSpecular`](material::NoSpecular), [`Phong`](material::Phong), [`Specular`](material::Specular) |
+//! | [`light`] | lights and their building blocks | [`AnyLight`](light::AnyLight), [`AreaLight`](light::AreaLight), [`Attenuation`](light::Attenuation), [`DirectionalLight`](light::DirectionalLight), [`Falloff`](light::Falloff), [`LightError`](light::LightError), [`LightSet`](light::LightSet), [`NoAttenuation`](light::NoAttenuation), [`PointLight`](light::PointLight), [`PreparedAny`](light::PreparedAny), [`PreparedArea`](light::PreparedArea), [`PreparedAttenuation`](light::PreparedAttenuation), [`PreparedDirectional`](light::PreparedDirectional), [`PreparedLights`](light::PreparedLights), [`PreparedPoint`](light::PreparedPoint), [`SpotCone`](light::SpotCone), [`SpotLight`](light::SpotLight), [`unit_from_f32`](light::unit_from_f32), [`unit_from_f64`](light::unit_from_f64) |
+//! | [`illumination`] | the illumination equation | [`Gain`](illumination::Gain), [`Gains`](illumination::Gains), [`InfiniteViewer`](illumination::InfiniteViewer), [`Lighting`](illumination::Lighting), [`LocalViewer`](illumination::LocalViewer), [`Surface`](illumination::Surface), [`Viewer`](illumination::Viewer), [`FACTOR_ONE`](illumination::FACTOR_ONE), [`add_light`](illumination::add_light), [`view_dir`](illumination::view_dir) |
+//! | [`depth`] | depth tests | [`DepthBand`](depth::DepthBand), [`DepthBuffer`](depth::DepthBuffer), [`DepthBufferTooSmall`](depth::DepthBufferTooSmall), [`DepthTest`](depth::DepthTest), [`NoDepth`](depth::NoDepth) |
+//! | [`framebuffer`] | an in-memory target | [`Canvas`](framebuffer::Canvas), [`Framebuffer`](framebuffer::Framebuffer), [`FramebufferTooSmall`](framebuffer::FramebufferTooSmall) |
+//! | [`band`] | band rendering | [`BandDepth`](band::BandDepth), [`Bands`](band::Bands), [`Cached`](band::Cached), [`Recomputed`](band::Recomputed), [`VertexMode`](band::VertexMode), [`CHUNKS`](band::CHUNKS) |
+//! | [`color`] | colours | [`Rgb`](color::Rgb), [`Shade`](color::Shade), [`RGB_MAX`](color::RGB_MAX), [`SHADE_ONE`](color::SHADE_ONE), [`pack565`](color::pack565) |
+//! | [`vector`] | fixed-point vectors and matrices | [`FormatError`](vector::FormatError), [`Mat4`](vector::Mat4), [`Unit3`](vector::Unit3), [`Vec3`](vector::Vec3), [`COORD_FRAC`](vector::COORD_FRAC), [`UNIT_ONE`](vector::UNIT_ONE), [`coord_from_f32`](vector::coord_from_f32), [`coord_from_f64`](vector::coord_from_f64), [`normal_matrix`](vector::normal_matrix) |
+//! | [`num`] | number formats | [`MiniFloat`](num::MiniFloat), [`WidePoint`](num::WidePoint) |
+//!
+//! At the root: [`Renderer`], [`Shaded`], [`Output`], [`FrameDepth`], [`Rgb`],
+//! [`Shade`], [`Lighting`], [`Material`], [`Mat4`], [`Unit3`], [`Vec3`], the specular
+//! exponent [`Exponent`] and the macro [`include_mesh!`].
 // The unit tests use the standard library (its prelude, `Vec`, threads).
 #![cfg_attr(not(test), no_std)]
 #![warn(missing_docs)]
+// The public-items list links each item by its module's path, also those
+// the root re-exports.
+#![allow(rustdoc::redundant_explicit_links)]
 
 pub mod band;
 pub mod camera;

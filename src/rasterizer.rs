@@ -32,6 +32,8 @@ pub(crate) const COORD_LIMIT: i64 = 1 << 28;
 /// How far a vertex may lie from the clip rectangle's centre pixel corner,
 /// in 1/16 pixel, on each axis (±1 023 pixels): then every edge function,
 /// area and step of the set-up fits `i32`.
+// rustc before 1.88 does not count the compile-time assertion below as a use.
+#[allow(dead_code)]
 pub(crate) const GUARD: i64 = setup::GUARD as i64;
 
 /// Attributes lie within `±ATTR_LIMIT` (2²⁵), so that the set-up's

@@ -426,21 +426,25 @@ fn tile(len: i32, at: i32) -> (i32, i32, i32) {
 
 /// A draw's prepared constants: camera, model-view and normal matrices,
 /// lighting in eye space and options ([`crate::Renderer`] makes one a
-/// draw).
+/// draw). Public only as [`Output`](crate::Output)'s hidden method's
+/// argument.
+#[doc(hidden)]
 #[derive(Clone, Debug)]
-pub struct Prepared<S: Specular, V: Viewer, L: LightSet> {
+pub struct Prepared<'c, S: Specular, V: Viewer, L: LightSet> {
     lighting: Lighting<S, V, L>,
-    camera: Camera,
+    // Borrowed, not copied: a camera in flash stays a constant that the
+    // projection's set-up folds away.
+    camera: &'c Camera,
     modelview: Mat4,
     pub(crate) normal_m: [[i16; 3]; 3],
     options: RenderOptions,
 }
 
-impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
+impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
     /// Lights to eye space, model-view and normal matrices. A singular
     /// model matrix gives zero normals (lit by `E + A·Ka` only).
     pub(crate) fn new(
-        camera: &Camera,
+        camera: &'c Camera,
         model: &Mat4,
         material: &Material<S>,
         global_ambient: Rgb,
@@ -450,7 +454,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<S, V, L> {
         let modelview = camera.view.mul(model);
         Prepared {
             lighting: Lighting::new(material, global_ambient, lights, &camera.view),
-            camera: *camera,
+            camera,
             modelview,
             normal_m: normal_matrix(&modelview).unwrap_or([[0; 3]; 3]),
             options,
@@ -737,7 +741,7 @@ pub(crate) fn check_bounds<E>(bb: &Rectangle) -> Result<(), RenderError<E>> {
 
 /// Per-draw constants.
 pub(crate) struct Frame<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
-    pub(crate) r: &'a Prepared<S, V, L>,
+    pub(crate) r: &'a Prepared<'a, S, V, L>,
     pub(crate) mesh: &'a Mesh<'m>,
     /// The model-view matrix with the mesh's box folded in
     /// ([`Prepared::mesh_modelview`]), by reference: a pointer, not 64

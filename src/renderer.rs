@@ -74,7 +74,7 @@ use crate::vector::Mat4;
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Renderer<'l, S: Specular, L: LightSet, V: Viewer = InfiniteViewer, M = Gouraud> {
-    camera: Camera,
+    camera: &'l Camera,
     material: Material<S>,
     lights: &'l L,
     ambient: Rgb,
@@ -87,9 +87,9 @@ impl<'l, S: Specular, L: LightSet> Renderer<'l, S, L> {
     /// A renderer of `material` under `lights` (world space) seen by
     /// `camera`: no global ambient light, the infinite viewer, Gouraud
     /// shading, [`RenderOptions::default`].
-    pub fn new(camera: &Camera, material: &Material<S>, lights: &'l L) -> Self {
+    pub fn new(camera: &'l Camera, material: &Material<S>, lights: &'l L) -> Self {
         Renderer {
-            camera: *camera,
+            camera,
             material: *material,
             lights,
             ambient: Rgb::BLACK,
@@ -143,7 +143,7 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
 
     /// The camera.
     pub fn camera(&self) -> &Camera {
-        &self.camera
+        self.camera
     }
 
     /// The switches.
@@ -179,9 +179,9 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
 
     /// The draw's constants for a model matrix.
     #[inline(always)]
-    fn prepare(&self, model: &Mat4) -> Prepared<S, V, L> {
+    fn prepare(&self, model: &Mat4) -> Prepared<'l, S, V, L> {
         Prepared::new(
-            &self.camera,
+            self.camera,
             model,
             &self.material,
             self.ambient,
@@ -480,7 +480,7 @@ pub trait Output<D>: sealed::Sealed {
     #[doc(hidden)]
     fn render<S, V, L, M, C>(
         &mut self,
-        p: &Prepared<S, V, L>,
+        p: &Prepared<'_, S, V, L>,
         mesh: &Mesh,
         depth: &mut D,
         vertices: &mut C,
@@ -528,7 +528,7 @@ impl<T: DrawTarget<Color = Rgb565>, D: FrameDepth> Output<D> for T {
     #[inline(always)]
     fn render<S, V, L, M, C>(
         &mut self,
-        p: &Prepared<S, V, L>,
+        p: &Prepared<'_, S, V, L>,
         mesh: &Mesh,
         depth: &mut D,
         vertices: &mut C,
@@ -550,7 +550,7 @@ impl<D: FrameDepth> Output<D> for Framebuffer<'_> {
     #[inline(always)]
     fn render<S, V, L, M, C>(
         &mut self,
-        p: &Prepared<S, V, L>,
+        p: &Prepared<'_, S, V, L>,
         mesh: &Mesh,
         depth: &mut D,
         vertices: &mut C,
@@ -572,7 +572,7 @@ impl<T: DrawTarget<Color = Rgb565>, D: BandDepth> Output<D> for Bands<'_, '_, T>
     #[inline(always)]
     fn render<S, V, L, M, C>(
         &mut self,
-        p: &Prepared<S, V, L>,
+        p: &Prepared<'_, S, V, L>,
         mesh: &Mesh,
         depth: &mut D,
         vertices: &mut C,

@@ -139,7 +139,8 @@ pub fn mesh_bytes(m: &MeshDesc) -> Vec<u8> {
 
 /// A scene's set-up in kernel types, as Rust source.
 pub struct Setup {
-    /// `Camera { .. }` (a constant expression).
+    /// The camera, a constant expression (its projection worked out by
+    /// the compiler).
     pub camera: String,
     /// The model matrix.
     pub model: String,
@@ -182,7 +183,7 @@ pub fn setup(d: &SceneDesc) -> Setup {
         .expect("camera")
         .view;
     let camera = format!(
-        "Camera {{ view: {}, projection: {projection}, near: f32::from_bits({:#x}), far: f32::from_bits({:#x}) }}",
+        "const {{ match Camera::from_view({}).with_projection({projection}, f32::from_bits({:#x}), f32::from_bits({:#x})) {{ Ok(c) => c, Err(_) => panic!(\"camera\") }} }}",
         mat4(&view),
         (c.near as f32).to_bits(),
         (c.far as f32).to_bits()

@@ -3,5 +3,6 @@
 
 mod coverage;
 mod normalize;
+mod public_items;
 mod span_shaders;
 mod specular_table;

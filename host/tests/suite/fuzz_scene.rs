@@ -425,19 +425,19 @@ fn size(b: &mut Bytes) -> (u32, u32) {
 fn camera(b: &mut Bytes) -> Camera {
     let tag = b.u8();
     match tag % 4 {
-        // Raw fields: any view matrix, any floats (the fields are public).
-        0 => Camera {
-            view: Mat4 {
+        // Any view matrix, any floats: a projection the camera refuses
+        // leaves the default one.
+        0 => {
+            let c = Camera::from_view(Mat4 {
                 m: [[0; 4]; 4].map(|r: [i32; 4]| r.map(|_| b.coord())),
-            },
-            projection: if b.bool() {
+            });
+            let p = if b.bool() {
                 Projection::Perspective { fovy_deg: b.f32() }
             } else {
                 Projection::Orthographic { height: b.f32() }
-            },
-            near: b.f32(),
-            far: b.f32(),
-        },
+            };
+            c.with_projection(p, b.f32(), b.f32()).unwrap_or(c)
+        }
         _ => {
             let eye = [
                 b.i8() as f32 / 8.0,
