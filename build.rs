@@ -19,6 +19,7 @@
 fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div64)");
+    println!("cargo:rustc-check-cfg=cfg(fixshade_explicit_draw)");
     println!("cargo:rerun-if-changed=build.rs");
     let target = std::env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {

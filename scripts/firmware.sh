@@ -13,7 +13,10 @@
 #     them with arm-none-eabi-size, runs them for the stack high-water
 #     mark and the instruction count; the `s1` configuration (standard
 #     scene S1 and nothing more) must print the checksum of the host's S1
-#     frame (exit 1 if not);
+#     frame (exit 1 if not); builds each again drawn through the kernel's
+#     explicit call (`--cfg fixshade_explicit_draw`, src/explicit.rs),
+#     sized and counted the same way: the report fails (exit 1) where the
+#     draw call takes a byte or an instruction more than that call;
 #  5. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
@@ -129,6 +132,20 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                     echo "  s1: checksum DIFFERS from the host's s1_gouraud frame ($want)"
                     exit 1
                 fi
+            fi
+            [ $level = none ] && continue
+            # The same configuration drawn through the explicit call (its
+            # own target directory: the cfg changes every crate's flags).
+            (cd firmware/qemu && RUSTFLAGS="-C link-arg=-Tlink.x --cfg fixshade_explicit_draw" \
+                CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
+            elf=$TGT/qemu-explicit/$t/release/fixshade-config
+            e=$OUT/config-explicit/$t/$level
+            mkdir -p "$e"
+            arm-none-eabi-size -A "$elf" > "$e/size.txt"
+            run_counted "$elf" "$e"
+            if ! cmp -s <(sed 's/ stack=.*//' "$d/console.log") <(sed 's/ stack=.*//' "$e/console.log"); then
+                echo "  $level: the explicit call drew another frame: $(cat "$e/console.log")"
+                exit 1
             fi
         done
     done

@@ -89,6 +89,9 @@ pub mod band;
 pub mod camera;
 pub mod color;
 pub mod depth;
+#[cfg(fixshade_explicit_draw)]
+#[doc(hidden)]
+pub mod explicit;
 pub mod framebuffer;
 pub mod illumination;
 pub mod light;

@@ -196,16 +196,38 @@ impl Falloff for NoAttenuation {
 /// denominator is 0. Constants are `U32F32`: [0, 2³²) with 2⁻³² resolution,
 /// which covers 10⁻⁶ to 10⁶.
 ///
+/// `c1` and `c2` are also kept as the mini floats the factor multiplies
+/// by, made when the attenuation is built: a draw only copies them.
+///
 /// ```
-/// use fixshade::light::Attenuation;
+/// use fixshade::light::{Attenuation, Falloff};
 /// let a = Attenuation::new(1.0, 0.0, 0.25).unwrap();
 /// assert!(Attenuation::new(-1.0, 0.0, 0.0).is_err());
-/// # let _ = a;
+/// // 1 / (1 + d²/4) is 0.5 at d = 2 (`Q.24`); the factor is `Q.15`.
+/// assert_eq!(Attenuation::factor(&a.prepare(), 2 << 24), 1 << 14);
+/// // 1 / (1 + d²) is 0.2 at d = 2.
+/// let p = Attenuation::new(1.0, 0.0, 1.0).unwrap().prepare();
+/// assert_eq!(Attenuation::factor(&p, 2 << 24), 6554);
+/// assert_eq!(Attenuation::factor(&p, 1000 << 24), 0); // 10⁻⁶: below 2⁻¹⁶
+/// // min(1, ·): 1 / (0.5 + 0.25²) would exceed 1.
+/// let near = Attenuation::new(0.5, 0.0, 1.0).unwrap().prepare();
+/// assert_eq!(Attenuation::factor(&near, 1 << 22), 1 << 15);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Attenuation {
     /// `c0`, `c1`, `c2`.
-    pub c: [U32F32; 3],
+    c: [U32F32; 3],
+    /// The form the factor reads.
+    prepared: PreparedAttenuation,
+}
+
+/// [`Attenuation`] as the factor reads it: `c0` in `Q.32`, `c1` and `c2`
+/// as mini floats (exponents in [−63, 0]: frac 32).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PreparedAttenuation {
+    c0: u64,
+    c1: MiniFloat,
+    c2: MiniFloat,
 }
 
 impl Default for Attenuation {
@@ -224,16 +246,14 @@ impl Attenuation {
     /// let p = Attenuation::NONE.prepare();
     /// assert_eq!(Attenuation::factor(&p, 1_000_000 << 24), 1 << 15);
     /// ```
-    pub const NONE: Attenuation = Attenuation {
-        c: [U32F32::ONE, U32F32::ZERO, U32F32::ZERO],
-    };
+    pub const NONE: Attenuation = Attenuation::from_bits([1 << 32, 0, 0]);
 
     /// From floats: each in [0, 2³²); NaN/∞ and negatives are errors.
     ///
     /// ```
     /// use fixshade::light::{Attenuation, LightError};
     /// let a = Attenuation::new(1.0, 0.5, 0.25).unwrap();
-    /// assert_eq!(a.c.map(|c| c.to_bits()), [1 << 32, 1 << 31, 1 << 30]);
+    /// assert_eq!(a.coefficients().map(|c| c.to_bits()), [1 << 32, 1 << 31, 1 << 30]);
     /// assert_eq!(Attenuation::new(1.0, -0.1, 0.0), Err(LightError::OutOfRange));
     /// assert_eq!(Attenuation::new(5.0e9, 0.0, 0.0), Err(LightError::OutOfRange));
     /// assert_eq!(Attenuation::new(1.0, 0.0, f32::NAN), Err(LightError::NotFinite));
@@ -247,14 +267,14 @@ impl Attenuation {
     /// ```
     /// use fixshade::light::{Attenuation, LightError};
     /// let a = Attenuation::from_f64([1.0, 1e-6, 1e6]).unwrap();
-    /// assert_eq!(a.c[1].to_bits(), 4295); // 10⁻⁶ · 2³², rounded
-    /// assert_eq!(a.c[2].to_num::<f64>(), 1e6);
+    /// assert_eq!(a.coefficients()[1].to_bits(), 4295); // 10⁻⁶ · 2³², rounded
+    /// assert_eq!(a.coefficients()[2].to_num::<f64>(), 1e6);
     /// // Even a negative that would round to 0 is an error.
     /// assert_eq!(Attenuation::from_f64([1.0, -1e-12, 0.0]), Err(LightError::OutOfRange));
     /// ```
     pub fn from_f64(c: [f64; 3]) -> Result<Self, LightError> {
         let [c0, c1, c2] = c;
-        let f = |v: f64| -> Result<U32F32, LightError> {
+        let f = |v: f64| -> Result<u64, LightError> {
             if !v.is_finite() {
                 return Err(LightError::NotFinite);
             }
@@ -263,46 +283,53 @@ impl Attenuation {
             if v < 0.0 {
                 return Err(LightError::OutOfRange);
             }
-            U32F32::checked_from_num(v).ok_or(LightError::OutOfRange)
+            U32F32::checked_from_num(v)
+                .map(U32F32::to_bits)
+                .ok_or(LightError::OutOfRange)
         };
-        Ok(Attenuation {
-            c: [f(c0)?, f(c1)?, f(c2)?],
-        })
+        Ok(Attenuation::from_bits([f(c0)?, f(c1)?, f(c2)?]))
+    }
+
+    /// From the raw `U32F32` bits of `c0`, `c1`, `c2` (every `u64` is
+    /// one); `const`, for lights written as constants.
+    ///
+    /// ```
+    /// use fixshade::light::Attenuation;
+    /// const HALF: Attenuation = Attenuation::from_bits([1 << 32, 1 << 31, 0]);
+    /// assert_eq!(Attenuation::new(1.0, 0.5, 0.0), Ok(HALF));
+    /// ```
+    pub const fn from_bits(c: [u64; 3]) -> Attenuation {
+        Attenuation {
+            c: [
+                U32F32::from_bits(c[0]),
+                U32F32::from_bits(c[1]),
+                U32F32::from_bits(c[2]),
+            ],
+            prepared: PreparedAttenuation {
+                c0: c[0],
+                c1: MiniFloat::from_u64_small_frac(c[1], 32),
+                c2: MiniFloat::from_u64_small_frac(c[2], 32),
+            },
+        }
+    }
+
+    /// `c0`, `c1`, `c2`.
+    pub const fn coefficients(&self) -> [U32F32; 3] {
+        self.c
     }
 }
 
-/// [`Attenuation`] prepared: `c0` in `Q.32`, `c1` and `c2` as floats.
-///
-/// ```
-/// use fixshade::light::{Attenuation, Falloff};
-/// // 1 / (1 + d²) is 0.2 at d = 2 (`Q.24`); the factor is `Q.15`.
-/// let p = Attenuation::new(1.0, 0.0, 1.0).unwrap().prepare();
-/// assert_eq!(Attenuation::factor(&p, 2 << 24), 6554);
-/// assert_eq!(Attenuation::factor(&p, 1000 << 24), 0); // 10⁻⁶: below 2⁻¹⁶
-/// // min(1, ·): 1 / (0.5 + 0.25²) would exceed 1.
-/// let near = Attenuation::new(0.5, 0.0, 1.0).unwrap().prepare();
-/// assert_eq!(Attenuation::factor(&near, 1 << 22), 1 << 15);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PreparedAttenuation {
-    c0: u64,
-    c1: MiniFloat,
-    c2: MiniFloat,
-}
-
 impl Falloff for Attenuation {
+    /// Made when built.
     type Prepared = PreparedAttenuation;
+    #[inline(always)]
     fn prepare(&self) -> PreparedAttenuation {
-        PreparedAttenuation {
-            c0: self.c[0].to_bits(),
-            c1: MiniFloat::from_u64_small_frac(self.c[1].to_bits(), 32),
-            c2: MiniFloat::from_u64_small_frac(self.c[2].to_bits(), 32),
-        }
+        self.prepared
     }
 
     #[inline]
     fn factor(p: &PreparedAttenuation, d_q24: u64) -> u32 {
-        // Exponents: c1, c2 ∈ [−63, 0] (prepare: frac 32), d ∈ [−55, 8],
+        // Exponents: c1, c2 ∈ [−63, 0] (frac 32), d ∈ [−55, 8],
         // c1·d ∈ [−87, 40], c2·d·d ∈ [−111, 80]: far inside MiniFloat's
         // range, so the clamps of `from_u64` and `mul` are left out here.
         let d = MiniFloat::from_u64_small_frac(d_q24, COORD_FRAC as i32);
@@ -860,7 +887,7 @@ impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {
 fn prepare_point<A: Falloff, const SPOT: bool>(
     view: &Mat4,
     l: &PointLight<A>,
-    cone: SpotCone,
+    cone: &SpotCone,
     kd: Rgb,
     ks: Rgb,
 ) -> PreparedPoint<A, SPOT> {
@@ -870,7 +897,7 @@ fn prepare_point<A: Falloff, const SPOT: bool>(
         att: l.attenuation.prepare(),
         cone: SpotCone {
             axis: dir_to_eye(view, cone.axis),
-            ..cone
+            ..*cone
         },
     }
 }
@@ -883,14 +910,14 @@ impl<A: Falloff> LightSet for PointLight<A> {
             delta_cutoff: 0,
             exponent: Exponent::ZERO,
         };
-        prepare_point(view, self, no_cone, kd, ks)
+        prepare_point(view, self, &no_cone, kd, ks)
     }
 }
 
 impl<A: Falloff> LightSet for SpotLight<A> {
     type Prepared = PreparedPoint<A, true>;
     fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
-        prepare_point(view, &self.light, self.cone, kd, ks)
+        prepare_point(view, &self.light, &self.cone, kd, ks)
     }
 }
 

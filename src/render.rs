@@ -112,7 +112,8 @@ pub enum ShadingKind {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+/// let material = Material::new();
+/// let renderer = Renderer::new(&camera, &material, &sun);
 /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
 /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
 /// MESH.shaded(&renderer.with_shading(Flat)).draw(&mut fb).unwrap();
@@ -136,7 +137,8 @@ pub trait ShadingMode {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// let renderer = Renderer::new(&camera, &Material::new(), &sun).with_shading(Flat);
+/// let material = Material::new();
+/// let renderer = Renderer::new(&camera, &material, &sun).with_shading(Flat);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
 /// MESH.shaded(&renderer).draw(&mut fb).unwrap();
@@ -163,7 +165,8 @@ impl ShadingMode for Flat {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// let renderer = Renderer::new(&camera, &Material::new(), &sun); // Gouraud by default
+/// let material = Material::new();
+/// let renderer = Renderer::new(&camera, &material, &sun); // Gouraud by default
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
 /// MESH.shaded(&renderer).draw(&mut fb).unwrap();
@@ -188,7 +191,8 @@ impl ShadingMode for Gouraud {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// let renderer = Renderer::new(&camera, &Material::new(), &sun).with_shading(PhongShading);
+/// let material = Material::new();
+/// let renderer = Renderer::new(&camera, &material, &sun).with_shading(PhongShading);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
 /// MESH.shaded(&renderer).draw(&mut fb).unwrap();
@@ -240,7 +244,8 @@ impl Default for RenderOptions {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
+/// # let material = Material::new();
+/// # let renderer = Renderer::new(&camera, &material, &sun);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
 /// let mut zs = [0u16; 16 * 16];
@@ -337,7 +342,8 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
+/// # let material = Material::new();
+/// # let renderer = Renderer::new(&camera, &material, &sun);
 /// let mut px = [0u16; 32 * 32];
 /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
 /// let s = MESH.shaded(&renderer).draw(&mut fb).unwrap();
@@ -383,7 +389,8 @@ type PixelBox = ((i32, i32), (i32, i32), bool);
 /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-/// # let renderer = Renderer::new(&camera, &Material::new(), &sun);
+/// # let material = Material::new();
+/// # let renderer = Renderer::new(&camera, &material, &sun);
 /// use fixshade::render::MAX_TARGET_SIDE;
 /// // A target that only reports its size (it is never drawn into).
 /// struct Wide;

@@ -13,7 +13,8 @@
 //!
 //! let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 //! let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-//! let renderer = Renderer::new(&camera, &Material::new(), &sun);
+//! let material = Material::new();
+//! let renderer = Renderer::new(&camera, &material, &sun);
 //! let mut display = MockDisplay::<Rgb565>::new();
 //! let stats = MESH.shaded(&renderer).draw(&mut display).unwrap();
 //! assert!(stats.pixels > 100);
@@ -66,7 +67,8 @@ use crate::vector::Mat4;
 /// use fixshade::prelude::*;
 /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
 /// let sun = DirectionalLight::new([1.0, 1.0, 1.0]).unwrap();
-/// let renderer = Renderer::new(&camera, &Material::new(), &sun)
+/// let material = Material::new();
+/// let renderer = Renderer::new(&camera, &material, &sun)
 ///     .with_ambient(Rgb::grey(0.1))
 ///     .with_viewer(LocalViewer)
 ///     .with_shading(Flat);
@@ -75,7 +77,7 @@ use crate::vector::Mat4;
 #[derive(Clone, Copy, Debug)]
 pub struct Renderer<'l, S: Specular, L: LightSet, V: Viewer = InfiniteViewer, M = Gouraud> {
     camera: &'l Camera,
-    material: Material<S>,
+    material: &'l Material<S>,
     lights: &'l L,
     ambient: Rgb,
     options: RenderOptions,
@@ -87,10 +89,14 @@ impl<'l, S: Specular, L: LightSet> Renderer<'l, S, L> {
     /// A renderer of `material` under `lights` (world space) seen by
     /// `camera`: no global ambient light, the infinite viewer, Gouraud
     /// shading, [`RenderOptions::default`].
-    pub fn new(camera: &'l Camera, material: &Material<S>, lights: &'l L) -> Self {
+    ///
+    /// It borrows all three, as the draw does: a camera, material or
+    /// lights that are constants stay constants, whose set-up the
+    /// compiler folds into the program (a copy would hide them from it).
+    pub fn new(camera: &'l Camera, material: &'l Material<S>, lights: &'l L) -> Self {
         Renderer {
             camera,
-            material: *material,
+            material,
             lights,
             ambient: Rgb::BLACK,
             options: RenderOptions::default(),
@@ -152,7 +158,8 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
     /// use fixshade::prelude::*;
     /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// assert_eq!(renderer.options(), RenderOptions::default());
     /// ```
     pub fn options(&self) -> RenderOptions {
@@ -166,7 +173,8 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
     /// use fixshade::prelude::*;
     /// let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// // A surface facing the light: 0.8 diffuse.
     /// let s = renderer.lighting().shade(Vec3::ZERO, Unit3::Z);
     /// assert_eq!(s.to_rgb565(), embedded_graphics::pixelcolor::Rgb565::new(25, 50, 25));
@@ -174,7 +182,7 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
     /// assert_eq!(renderer.lighting().ambient(), fixshade::Shade::BLACK);
     /// ```
     pub fn lighting(&self) -> Lighting<S, V, L> {
-        Lighting::new(&self.material, self.ambient, self.lights, &self.camera.view)
+        Lighting::new(self.material, self.ambient, self.lights, &self.camera.view)
     }
 
     /// The draw's constants for a model matrix.
@@ -183,7 +191,7 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
         Prepared::new(
             self.camera,
             model,
-            &self.material,
+            self.material,
             self.ambient,
             self.lights,
             self.options,
@@ -299,7 +307,8 @@ where
     /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// let (mut px, mut z) = ([0u16; 32 * 32], [0u16; 32 * 32]);
     /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
     /// let mut depth = DepthBuffer::new(&mut z, 32, 32).unwrap(); // cleared
@@ -326,7 +335,8 @@ where
     /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// let mut display = MockDisplay::<Rgb565>::new();
     /// let s = MESH.shaded(&renderer).draw(&mut display).unwrap();
     /// let drawn = (0..64)
@@ -347,7 +357,8 @@ where
     /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// let (mut a, mut b) = ([0u16; 32 * 32], [0u16; 32 * 32]);
     /// let mut fb = Framebuffer::new(&mut a, 32, 32).unwrap();
     /// MESH.shaded(&renderer).draw(&mut fb.canvas()).unwrap();
@@ -370,7 +381,8 @@ where
     /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
-    /// let renderer = Renderer::new(&camera, &Material::new(), &sun);
+    /// let material = Material::new();
+    /// let renderer = Renderer::new(&camera, &material, &sun);
     /// // The display: here a framebuffer's canvas; any DrawTarget<Color = Rgb565>.
     /// let mut px = [0u16; 32 * 32];
     /// let mut display = Framebuffer::new(&mut px, 32, 32).unwrap();
@@ -456,7 +468,7 @@ where
 /// mesh error first, as the draw reports it), before the draw's constants
 /// are made.
 #[inline(always)]
-fn normals_for<M: ShadingMode>(mesh: &Mesh) -> Result<(), RenderError<Infallible>> {
+pub(crate) fn normals_for<M: ShadingMode>(mesh: &Mesh) -> Result<(), RenderError<Infallible>> {
     if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
         mesh.validate().map_err(RenderError::Mesh)?;
         return Err(RenderError::NoNormals);

@@ -51,9 +51,11 @@ fn wide(p: [f64; 3]) -> String {
 }
 
 fn attenuation(a: [f64; 3]) -> String {
-    let c = Attenuation::from_f64(a).expect("attenuation").c;
+    let c = Attenuation::from_f64(a)
+        .expect("attenuation")
+        .coefficients();
     format!(
-        "Attenuation {{ c: [U32F32::from_bits({}), U32F32::from_bits({}), U32F32::from_bits({})] }}",
+        "Attenuation::from_bits([{}, {}, {}])",
         c[0].to_bits(),
         c[1].to_bits(),
         c[2].to_bits()
@@ -255,8 +257,6 @@ pub fn setup(d: &SceneDesc) -> Setup {
 
 /// The `use` lines the generated source needs.
 pub const PRELUDE: &str = "#[allow(unused_imports)]
-use fixed::types::U32F32;
-#[allow(unused_imports)]
 use fixshade::camera::{Camera, Projection};
 #[allow(unused_imports)]
 use fixshade::illumination::{InfiniteViewer, LocalViewer};

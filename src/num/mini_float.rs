@@ -23,7 +23,7 @@
 /// assert_eq!(tiny, MiniFloat::ZERO);
 /// assert_eq!(MiniFloat::from_u64(3, 1).to_q32_saturating(), 3 << 31); // 1.5
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct MiniFloat {
     m: u32,
     e: i32,

@@ -501,6 +501,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     let cfg = raw.join("config");
     if cfg.is_dir() {
         configurations(&cfg, &mut md, &mut js)?;
+        draw_call_cost(&cfg, &raw.join("config-explicit"), &mut md)?;
     } else {
         let _ = writeln!(
             md,
@@ -530,6 +531,59 @@ fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
             pick(name).then(|| u64::from_str_radix(size, 16).ok())?
         })
         .sum()
+}
+
+/// The draw call against the explicit call (src/explicit.rs): each
+/// configuration under `cfg` (`cfg/TARGET/LEVEL/`) built again under
+/// `explicit`, .text and instructions side by side. An error where the
+/// draw call takes a byte or an instruction more: the inferred API is to
+/// cost nothing.
+fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<(), String> {
+    let _ = writeln!(
+        md,
+        "## What the draw call costs\n\n\
+         Each configuration above built twice: drawn by the draw call \
+         (`mesh.shaded(&renderer).with_model(..).with_depth(..).with_cache(..).draw(&mut fb)`, \
+         every type inferred), and by one explicit call of the same kernel with every argument \
+         given at once and every choice a type parameter, the form of the entry points before \
+         the draw call (`fixshade::explicit::draw`, compiled only with \
+         `--cfg fixshade_explicit_draw`). The same frames; .text as above; instructions of the \
+         render call. scripts/firmware.sh fails where the draw call takes more.\n\n\
+         | configuration | M4F .text, draw call / explicit | M4F instructions, draw call / explicit | M0+ .text, draw call / explicit | M0+ instructions, draw call / explicit |\n\
+         | --- | ---: | ---: | ---: | ---: |"
+    );
+    let mut over = Vec::new();
+    for (level, what, _) in LEVELS.iter().skip(1) {
+        // (The S1 row's note on its Δ columns does not apply here.)
+        let what = what.split(" (Δ").next().unwrap_or(what);
+        let mut row = format!("| {what} |");
+        for (t, core) in TARGETS {
+            let a = config(&cfg.join(t).join(level))?;
+            let e = config(&explicit.join(t).join(level))?;
+            let (ai, ei) = (a.instructions.unwrap_or(0), e.instructions.unwrap_or(0));
+            let mark = |x: u64, y: u64| match x.cmp(&y) {
+                std::cmp::Ordering::Equal => format!("{x} (same)"),
+                _ => format!("{x} / {y} ({:+})", x as i64 - y as i64),
+            };
+            let _ = write!(row, " {} | {} |", mark(a.text, e.text), mark(ai, ei));
+            if a.text > e.text || ai > ei {
+                over.push(format!(
+                    "{core} {level}: .text {} / {}, instructions {ai} / {ei}",
+                    a.text, e.text
+                ));
+            }
+        }
+        let _ = writeln!(md, "{row}");
+    }
+    md.push('\n');
+    if over.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "the draw call costs more than the explicit call: {}",
+            over.join("; ")
+        ))
+    }
 }
 
 /// The flash/RAM table of the scene configurations under `cfg`

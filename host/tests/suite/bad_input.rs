@@ -1006,7 +1006,8 @@ fn facing_renderer(sun: &DirectionalLight) -> Renderer<'_, NoSpecular, Direction
     static CAMERA: std::sync::OnceLock<Camera> = std::sync::OnceLock::new();
     let camera =
         CAMERA.get_or_init(|| Camera::look_at([0.0, 0.0, 1.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap());
-    Renderer::new(camera, &Material::new(), sun)
+    static MATERIAL: Material<NoSpecular> = Material::new();
+    Renderer::new(camera, &MATERIAL, sun)
 }
 
 /// A target whose bounding box ends past `i32::MAX` is refused with

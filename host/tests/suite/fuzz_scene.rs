@@ -25,7 +25,6 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::RawData;
 use embedded_graphics::primitives::{PointsIter, Rectangle};
 use embedded_graphics::Pixel;
-use fixed::types::U32F32;
 use fixshade::camera::{Camera, Projection};
 use fixshade::depth::DepthBuffer;
 use fixshade::framebuffer::Framebuffer;
@@ -329,9 +328,7 @@ fn wide(b: &mut Bytes) -> WidePoint {
 
 fn attenuation(b: &mut Bytes) -> Attenuation {
     match b.u8() % 4 {
-        0 => Attenuation {
-            c: [0, 1, 2].map(|_| U32F32::from_bits(b.u64())),
-        },
+        0 => Attenuation::from_bits([0, 1, 2].map(|_| b.u64())),
         1 => Attenuation::new(b.f32(), b.f32(), b.f32()).unwrap_or(Attenuation::NONE),
         _ => Attenuation::NONE,
     }

@@ -6,6 +6,8 @@
 //! `phong` (+ per-pixel shading). `s1` is not cumulative: `specular` with
 //! the depth buffer, which is standard scene S1 exactly (scripts/firmware.sh
 //! checks its frame's checksum against the host's `s1_gouraud` frame).
+//! Built with `--cfg fixshade_explicit_draw`, each draws through the
+//! kernel's explicit call instead of the draw call (src/explicit.rs).
 //! Without a feature it renders nothing: the runtime's own size
 //! (semihosting, the panic handler's formatting). Prints a checksum of the
 //! frame and the stack used by the render call, then exits through
@@ -44,7 +46,7 @@ static mut CACHE: [MaybeUninit<CachedVertex>; VERTICES] =
 #[inline(never)]
 fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -> RenderResult {
     use fixshade::render::RenderOptions;
-    use fixshade::{Mat4, Renderer};
+    use fixshade::Mat4;
     use fixshade_firmware_qemu::count;
     use fixshade_firmware_qemu::scenes::*;
 
@@ -62,9 +64,9 @@ fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -
     #[cfg(feature = "spot")]
     let lights = (S1_SUN, LAMP, SPOT);
     #[cfg(not(feature = "phong"))]
-    let mode = fixshade::render::Gouraud;
+    type Mode = fixshade::render::Gouraud;
     #[cfg(feature = "phong")]
-    let mode = fixshade::render::PhongShading;
+    type Mode = fixshade::render::PhongShading;
 
     // A new depth buffer is cleared.
     #[cfg(feature = "depth-buffer")]
@@ -73,14 +75,40 @@ fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -
     #[cfg(not(feature = "depth-buffer"))]
     let _ = depth;
     count::begin();
-    let r = Renderer::new(&S1_CAMERA, &material, &lights)
-        .with_ambient(S1_AMBIENT)
-        .with_shading(mode)
-        .with_options(RenderOptions::default());
-    let shaded = mesh.shaded(&r).with_model(Mat4::IDENTITY);
-    #[cfg(feature = "depth-buffer")]
-    let shaded = shaded.with_depth(&mut db);
-    let res = shaded.with_cache(cache).draw(fb);
+    // The draw call, as a program writes it.
+    #[cfg(not(fixshade_explicit_draw))]
+    let res = {
+        let r = fixshade::Renderer::new(&S1_CAMERA, &material, &lights)
+            .with_ambient(S1_AMBIENT)
+            .with_shading(Mode::default())
+            .with_options(RenderOptions::default());
+        let shaded = mesh.shaded(&r).with_model(Mat4::IDENTITY);
+        #[cfg(feature = "depth-buffer")]
+        let shaded = shaded.with_depth(&mut db);
+        shaded.with_cache(cache).draw(fb)
+    };
+    // The same draw as one explicit call, the baseline the draw call is
+    // held to (scripts/firmware.sh builds it with `--cfg
+    // fixshade_explicit_draw`).
+    #[cfg(fixshade_explicit_draw)]
+    let res = {
+        #[cfg(feature = "depth-buffer")]
+        let depth = &mut db;
+        #[cfg(not(feature = "depth-buffer"))]
+        let depth = &mut fixshade::depth::NoDepth;
+        fixshade::explicit::draw::<Mode, fixshade::illumination::InfiniteViewer, _, _, _, _, _>(
+            &S1_CAMERA,
+            Mat4::IDENTITY,
+            &material,
+            S1_AMBIENT,
+            &lights,
+            RenderOptions::default(),
+            &mesh,
+            fb,
+            depth,
+            &mut fixshade::band::Cached(cache),
+        )
+    };
     count::end();
     res
 }

@@ -1,0 +1,49 @@
+//! The draw as one explicit call: every argument at once and every choice
+//! a type parameter, the form of the crate's entry points before the draw
+//! call ([`Renderer`](crate::Renderer), [`Shaded`](crate::Shaded)). Built
+//! only with `--cfg fixshade_explicit_draw`, never part of the crate's
+//! API: `scripts/firmware.sh` builds each scene configuration both ways,
+//! sizes and counts both, and fails where the draw call takes a byte or
+//! an instruction more than this call.
+
+use crate::band::VertexMode;
+use crate::camera::Camera;
+use crate::color::Rgb;
+use crate::illumination::Viewer;
+use crate::light::LightSet;
+use crate::material::{Material, Specular};
+use crate::mesh::Mesh;
+use crate::render::{DrawStats, Prepared, RenderError, RenderOptions, ShadingMode};
+use crate::renderer::{normals_for, Output};
+use crate::vector::Mat4;
+
+/// Draws `mesh` under `lights` with shading mode `M` and viewer `V` into
+/// `output`, with depth test `depth` and vertex storage `vertices`: what
+/// `mesh.shaded(&renderer).with_model(model)…draw(output)` does, without
+/// the builders.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn draw<M, V, S, L, O, D, C>(
+    camera: &Camera,
+    model: Mat4,
+    material: &Material<S>,
+    ambient: Rgb,
+    lights: &L,
+    options: RenderOptions,
+    mesh: &Mesh,
+    output: &mut O,
+    depth: &mut D,
+    vertices: &mut C,
+) -> Result<DrawStats, RenderError<O::Error>>
+where
+    M: ShadingMode,
+    V: Viewer,
+    S: Specular,
+    L: LightSet,
+    O: Output<D>,
+    C: VertexMode,
+{
+    normals_for::<M>(mesh).map_err(RenderError::lift)?;
+    let p = Prepared::<S, V, L>::new(camera, &model, material, ambient, lights, options);
+    output.render::<S, V, L, M, C>(&p, mesh, depth, vertices)
+}
