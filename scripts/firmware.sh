@@ -15,8 +15,10 @@
 #     scene S1 and nothing more) must print the checksum of the host's S1
 #     frame (exit 1 if not); builds each again drawn through the kernel's
 #     explicit call (`--cfg fixshade_explicit_draw`, src/explicit.rs),
-#     sized and counted the same way: the report fails (exit 1) where the
-#     draw call takes a byte or an instruction more than that call;
+#     sized, listed and counted the same way: the report fails (exit 1,
+#     after writing it) where the draw call's code differs from that
+#     call's but for the set-up inlined into the caller, or takes more
+#     there than register allocation moves (see firmware/host/src/report.rs);
 #  5. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
@@ -135,13 +137,16 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             fi
             [ $level = none ] && continue
             # The same configuration drawn through the explicit call (its
-            # own target directory: the cfg changes every crate's flags).
-            (cd firmware/qemu && RUSTFLAGS="-C link-arg=-Tlink.x --cfg fixshade_explicit_draw" \
-                CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
+            # own target directory: the cfg, added to the target's flags
+            # of firmware/qemu/.cargo/config.toml, changes every crate's).
+            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
+                --config "target.$t.rustflags=['--cfg','fixshade_explicit_draw']" \
+                --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-explicit/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
             mkdir -p "$e"
             arm-none-eabi-size -A "$elf" > "$e/size.txt"
+            arm-none-eabi-nm -S --size-sort -C "$elf" > "$e/nm.txt"
             run_counted "$elf" "$e"
             if ! cmp -s <(sed 's/ stack=.*//' "$d/console.log") <(sed 's/ stack=.*//' "$e/console.log"); then
                 echo "  $level: the explicit call drew another frame: $(cat "$e/console.log")"

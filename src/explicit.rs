@@ -1,10 +1,10 @@
 //! The draw as one explicit call: every argument at once and every choice
-//! a type parameter, the form of the crate's entry points before the draw
-//! call ([`Renderer`](crate::Renderer), [`Shaded`](crate::Shaded)). Built
-//! only with `--cfg fixshade_explicit_draw`, never part of the crate's
-//! API: `scripts/firmware.sh` builds each scene configuration both ways,
-//! sizes and counts both, and fails where the draw call takes a byte or
-//! an instruction more than this call.
+//! a type parameter, with none of the draw call's builders
+//! ([`Renderer`](crate::Renderer), [`Shaded`](crate::Shaded)). Built only
+//! with `--cfg fixshade_explicit_draw`, never part of the crate's API: it
+//! is the baseline `scripts/firmware.sh` holds the draw call to, each
+//! scene configuration built both ways and their code compared function
+//! by function.
 
 use crate::band::VertexMode;
 use crate::camera::Camera;

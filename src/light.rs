@@ -193,11 +193,10 @@ impl Falloff for NoAttenuation {
 }
 
 /// `f = min(1, 1 / (c0 + c1·d + c2·d²))` (SPEC.md 3); `f = 1` where the
-/// denominator is 0. Constants are `U32F32`: [0, 2³²) with 2⁻³² resolution,
-/// which covers 10⁻⁶ to 10⁶.
-///
-/// `c1` and `c2` are also kept as the mini floats the factor multiplies
-/// by, made when the attenuation is built: a draw only copies them.
+/// denominator is 0. Constants in [0, 2³²) with 2⁻³² resolution, which
+/// covers 10⁻⁶ to 10⁶: `c0` as `U32F32`, `c1` and `c2` as the mini floats
+/// the factor multiplies by (their 32 most significant bits), made when the
+/// attenuation is built, so that a draw only copies them.
 ///
 /// ```
 /// use fixshade::light::{Attenuation, Falloff};
@@ -215,17 +214,9 @@ impl Falloff for NoAttenuation {
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Attenuation {
-    /// `c0`, `c1`, `c2`.
-    c: [U32F32; 3],
-    /// The form the factor reads.
-    prepared: PreparedAttenuation,
-}
-
-/// [`Attenuation`] as the factor reads it: `c0` in `Q.32`, `c1` and `c2`
-/// as mini floats (exponents in [−63, 0]: frac 32).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct PreparedAttenuation {
+    /// `c0` in `Q.32`.
     c0: u64,
+    /// `c1`, `c2`: exponents in [−63, 0] (from `Q.32`).
     c1: MiniFloat,
     c2: MiniFloat,
 }
@@ -300,35 +291,40 @@ impl Attenuation {
     /// ```
     pub const fn from_bits(c: [u64; 3]) -> Attenuation {
         Attenuation {
-            c: [
-                U32F32::from_bits(c[0]),
-                U32F32::from_bits(c[1]),
-                U32F32::from_bits(c[2]),
-            ],
-            prepared: PreparedAttenuation {
-                c0: c[0],
-                c1: MiniFloat::from_u64_small_frac(c[1], 32),
-                c2: MiniFloat::from_u64_small_frac(c[2], 32),
-            },
+            c0: c[0],
+            c1: MiniFloat::from_u64_small_frac(c[1], 32),
+            c2: MiniFloat::from_u64_small_frac(c[2], 32),
         }
     }
 
-    /// `c0`, `c1`, `c2`.
+    /// `c0`, `c1`, `c2` as the factor uses them: `c1` and `c2` to their 32
+    /// most significant bits.
+    ///
+    /// ```
+    /// use fixshade::light::Attenuation;
+    /// // 2³¹ + 2⁻³² has 64 significant bits: the factor keeps the top 32.
+    /// let a = Attenuation::from_bits([0, (1 << 63) + 1, 3]);
+    /// assert_eq!(a.coefficients().map(|c| c.to_bits()), [0, 1 << 63, 3]);
+    /// ```
     pub const fn coefficients(&self) -> [U32F32; 3] {
-        self.c
+        [
+            U32F32::from_bits(self.c0),
+            U32F32::from_bits(self.c1.to_q32_saturating()),
+            U32F32::from_bits(self.c2.to_q32_saturating()),
+        ]
     }
 }
 
 impl Falloff for Attenuation {
-    /// Made when built.
-    type Prepared = PreparedAttenuation;
+    /// Built in the form the factor reads.
+    type Prepared = Attenuation;
     #[inline(always)]
-    fn prepare(&self) -> PreparedAttenuation {
-        self.prepared
+    fn prepare(&self) -> Attenuation {
+        *self
     }
 
     #[inline]
-    fn factor(p: &PreparedAttenuation, d_q24: u64) -> u32 {
+    fn factor(p: &Attenuation, d_q24: u64) -> u32 {
         // Exponents: c1, c2 ∈ [−63, 0] (frac 32), d ∈ [−55, 8],
         // c1·d ∈ [−87, 40], c2·d·d ∈ [−111, 80]: far inside MiniFloat's
         // range, so the clamps of `from_u64` and `mul` are left out here.
@@ -887,7 +883,7 @@ impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {
 fn prepare_point<A: Falloff, const SPOT: bool>(
     view: &Mat4,
     l: &PointLight<A>,
-    cone: &SpotCone,
+    cone: SpotCone,
     kd: Rgb,
     ks: Rgb,
 ) -> PreparedPoint<A, SPOT> {
@@ -897,7 +893,7 @@ fn prepare_point<A: Falloff, const SPOT: bool>(
         att: l.attenuation.prepare(),
         cone: SpotCone {
             axis: dir_to_eye(view, cone.axis),
-            ..*cone
+            ..cone
         },
     }
 }
@@ -910,14 +906,14 @@ impl<A: Falloff> LightSet for PointLight<A> {
             delta_cutoff: 0,
             exponent: Exponent::ZERO,
         };
-        prepare_point(view, self, &no_cone, kd, ks)
+        prepare_point(view, self, no_cone, kd, ks)
     }
 }
 
 impl<A: Falloff> LightSet for SpotLight<A> {
     type Prepared = PreparedPoint<A, true>;
     fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> Self::Prepared {
-        prepare_point(view, &self.light, &self.cone, kd, ks)
+        prepare_point(view, &self.light, self.cone, kd, ks)
     }
 }
 

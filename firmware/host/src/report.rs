@@ -499,9 +499,10 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         }
     }
     let cfg = raw.join("config");
+    let mut problems = Vec::new();
     if cfg.is_dir() {
         configurations(&cfg, &mut md, &mut js)?;
-        draw_call_cost(&cfg, &raw.join("config-explicit"), &mut md)?;
+        problems = draw_call_cost(&cfg, &raw.join("config-explicit"), &mut md)?;
     } else {
         let _ = writeln!(
             md,
@@ -518,7 +519,14 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         "wrote {0}/firmware_counts.json and {0}/firmware.md",
         out.display()
     );
-    Ok(())
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "the draw call costs more than the explicit call: {}",
+            problems.join("; ")
+        ))
+    }
 }
 
 /// Bytes of the symbols of `arm-none-eabi-nm -S -C` output whose name
@@ -533,57 +541,110 @@ fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
         .sum()
 }
 
+/// The function the draw's set-up is inlined into, in both builds: the
+/// configuration's render call.
+const CALLER: &str = "fixshade_config::render";
+
+/// How much more the caller may take in the draw call's build than in the
+/// explicit call's: register allocation and scheduling of the same
+/// once-a-draw set-up, no more.
+const ALLOCATION_SLACK: u64 = 16;
+
+/// The sizes of the functions (`t`/`T` symbols) of an `arm-none-eabi-nm
+/// -S -C` listing, by name.
+fn functions(nm: &str) -> BTreeMap<String, u64> {
+    nm.lines()
+        .filter_map(|l| {
+            let mut w = l.splitn(4, ' ');
+            let (_, size, kind, name) = (w.next()?, w.next()?, w.next()?, w.next()?);
+            let size = u64::from_str_radix(size, 16).ok()?;
+            matches!(kind, "t" | "T").then(|| (name.to_string(), size))
+        })
+        .collect()
+}
+
 /// The draw call against the explicit call (src/explicit.rs): each
 /// configuration under `cfg` (`cfg/TARGET/LEVEL/`) built again under
-/// `explicit`, .text and instructions side by side. An error where the
-/// draw call takes a byte or an instruction more: the inferred API is to
-/// cost nothing.
-fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<(), String> {
+/// `explicit`, side by side: .text, instructions, and the functions whose
+/// code differs. The problems found, for [`run`] to fail on once the
+/// report is written: a function other than [`CALLER`] that differs (the
+/// draw call would add code to the kernel's), or a caller that takes more
+/// than [`ALLOCATION_SLACK`] bytes or instructions beyond the explicit
+/// call's.
+fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<Vec<String>, String> {
     let _ = writeln!(
         md,
         "## What the draw call costs\n\n\
          Each configuration above built twice: drawn by the draw call \
          (`mesh.shaded(&renderer).with_model(..).with_depth(..).with_cache(..).draw(&mut fb)`, \
          every type inferred), and by one explicit call of the same kernel with every argument \
-         given at once and every choice a type parameter, the form of the entry points before \
-         the draw call (`fixshade::explicit::draw`, compiled only with \
-         `--cfg fixshade_explicit_draw`). The same frames; .text as above; instructions of the \
-         render call. scripts/firmware.sh fails where the draw call takes more.\n\n\
-         | configuration | M4F .text, draw call / explicit | M4F instructions, draw call / explicit | M0+ .text, draw call / explicit | M0+ instructions, draw call / explicit |\n\
-         | --- | ---: | ---: | ---: | ---: |"
+         given at once and every choice a type parameter (`fixshade::explicit::draw`, compiled \
+         only with `--cfg fixshade_explicit_draw`). The same frames; .text as above; \
+         instructions of the render call; \"functions that differ\": the functions of the two \
+         builds (`arm-none-eabi-nm -S`) that differ in size or are in one only. Both inline the \
+         draw's set-up into the caller, `{CALLER}`; scripts/firmware.sh fails where any other \
+         function differs, or where the caller takes more than {ALLOCATION_SLACK} bytes or \
+         instructions beyond the explicit call's.\n\n\
+         | configuration | core | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
+         | --- | --- | ---: | ---: | --- |"
     );
-    let mut over = Vec::new();
+    let mut problems = Vec::new();
     for (level, what, _) in LEVELS.iter().skip(1) {
         // (The S1 row's note on its Δ columns does not apply here.)
         let what = what.split(" (Δ").next().unwrap_or(what);
-        let mut row = format!("| {what} |");
         for (t, core) in TARGETS {
-            let a = config(&cfg.join(t).join(level))?;
-            let e = config(&explicit.join(t).join(level))?;
-            let (ai, ei) = (a.instructions.unwrap_or(0), e.instructions.unwrap_or(0));
-            let mark = |x: u64, y: u64| match x.cmp(&y) {
-                std::cmp::Ordering::Equal => format!("{x} (same)"),
-                _ => format!("{x} / {y} ({:+})", x as i64 - y as i64),
+            let (ad, ed) = (cfg.join(t).join(level), explicit.join(t).join(level));
+            let (a, e) = (config(&ad)?, config(&ed)?);
+            let count = |c: &Config, d: &Path| {
+                c.instructions
+                    .ok_or_else(|| format!("{}: no instruction count", d.display()))
             };
-            let _ = write!(row, " {} | {} |", mark(a.text, e.text), mark(ai, ei));
-            if a.text > e.text || ai > ei {
-                over.push(format!(
-                    "{core} {level}: .text {} / {}, instructions {ai} / {ei}",
-                    a.text, e.text
+            let (ai, ei) = (count(&a, &ad)?, count(&e, &ed)?);
+            let (fa, fe) = (
+                functions(&read(&ad.join("nm.txt"))?),
+                functions(&read(&ed.join("nm.txt"))?),
+            );
+            let mut differ: Vec<String> = Vec::new();
+            for name in fa.keys().chain(fe.keys().filter(|n| !fa.contains_key(*n))) {
+                let (x, y) = (fa.get(name), fe.get(name));
+                if x != y {
+                    let show = |v: Option<&u64>| v.map_or("none".to_string(), |v| format!("{v} B"));
+                    differ.push(format!("`{name}` {} / {}", show(x), show(y)));
+                    if name != CALLER {
+                        problems.push(format!("{core} {level}: `{name}` differs"));
+                    }
+                }
+            }
+            let caller = |f: &BTreeMap<String, u64>| f.get(CALLER).copied().unwrap_or(0);
+            if caller(&fa) > caller(&fe) + ALLOCATION_SLACK || ai > ei + ALLOCATION_SLACK {
+                problems.push(format!(
+                    "{core} {level}: the caller takes {} / {} B, the draw {ai} / {ei} instructions",
+                    caller(&fa),
+                    caller(&fe)
                 ));
             }
+            let pair = |x: u64, y: u64| {
+                if x == y {
+                    format!("{x} (same)")
+                } else {
+                    format!("{x} / {y} ({:+})", x as i64 - y as i64)
+                }
+            };
+            let differ = if differ.is_empty() {
+                "none".to_string()
+            } else {
+                differ.join(", ")
+            };
+            let _ = writeln!(
+                md,
+                "| {what} | {core} | {} | {} | {differ} |",
+                pair(a.text, e.text),
+                pair(ai, ei)
+            );
         }
-        let _ = writeln!(md, "{row}");
     }
     md.push('\n');
-    if over.is_empty() {
-        Ok(())
-    } else {
-        Err(format!(
-            "the draw call costs more than the explicit call: {}",
-            over.join("; ")
-        ))
-    }
+    Ok(problems)
 }
 
 /// The flash/RAM table of the scene configurations under `cfg`
