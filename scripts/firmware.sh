@@ -17,8 +17,9 @@
 #     explicit call (`--cfg fixshade_explicit_draw`, src/explicit.rs),
 #     sized, listed and counted the same way: the report fails (exit 1,
 #     after writing it) where the draw call's code differs from that
-#     call's but for the set-up inlined into the caller, or takes more
-#     there than register allocation moves (see firmware/host/src/report.rs);
+#     call's but in the caller (the render call, into which both inline the
+#     set-up), or exceeds it there or in instructions by more than register
+#     allocation moves (firmware/host/src/report.rs);
 #  5. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer

@@ -541,13 +541,13 @@ fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
         .sum()
 }
 
-/// The function the draw's set-up is inlined into, in both builds: the
-/// configuration's render call.
+/// The function the draw's set-up is inlined into, in both builds (in
+/// some configurations the whole draw): the configuration's render call.
 const CALLER: &str = "fixshade_config::render";
 
-/// How much more the caller may take in the draw call's build than in the
-/// explicit call's: register allocation and scheduling of the same
-/// once-a-draw set-up, no more.
+/// How many bytes more the caller, and instructions more the draw, may
+/// take in the draw call's build than in the explicit call's: register
+/// allocation and scheduling of the same code, once a draw, no more.
 const ALLOCATION_SLACK: u64 = 16;
 
 /// The sizes of the functions (`t`/`T` symbols) of an `arm-none-eabi-nm
@@ -568,9 +568,8 @@ fn functions(nm: &str) -> BTreeMap<String, u64> {
 /// `explicit`, side by side: .text, instructions, and the functions whose
 /// code differs. The problems found, for [`run`] to fail on once the
 /// report is written: a function other than [`CALLER`] that differs (the
-/// draw call would add code to the kernel's), or a caller that takes more
-/// than [`ALLOCATION_SLACK`] bytes or instructions beyond the explicit
-/// call's.
+/// draw call would add code to the kernel's), or a caller or a count that
+/// exceeds the explicit call's by more than [`ALLOCATION_SLACK`].
 fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<Vec<String>, String> {
     let _ = writeln!(
         md,
@@ -582,9 +581,10 @@ fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<Vec<St
          only with `--cfg fixshade_explicit_draw`). The same frames; .text as above; \
          instructions of the render call; \"functions that differ\": the functions of the two \
          builds (`arm-none-eabi-nm -S`) that differ in size or are in one only. Both inline the \
-         draw's set-up into the caller, `{CALLER}`; scripts/firmware.sh fails where any other \
-         function differs, or where the caller takes more than {ALLOCATION_SLACK} bytes or \
-         instructions beyond the explicit call's.\n\n\
+         draw's set-up (in some configurations the whole draw) into the caller, `{CALLER}`; \
+         scripts/firmware.sh fails where any other function differs, or where the caller's \
+         bytes or the draw's instructions exceed the explicit call's by more than \
+         {ALLOCATION_SLACK}.\n\n\
          | configuration | core | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
          | --- | --- | ---: | ---: | --- |"
     );
