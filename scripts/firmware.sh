@@ -57,6 +57,13 @@ host_checksum() {
 
 sym() { arm-none-eabi-nm "$1" | awk -v s="$2" '$3 == s { print "0x" $1 }'; }
 
+# sizes ELF DIR: its sections in DIR/size.txt, its symbols in DIR/nm.txt.
+sizes() {
+    mkdir -p "$2"
+    arm-none-eabi-size -A "$1" > "$2/size.txt"
+    arm-none-eabi-nm -S --size-sort -C "$1" > "$2/nm.txt"
+}
+
 # run_counted ELF DIR: runs ELF in QEMU in DIR with the plugin; counts in DIR/counts.txt.
 run_counted() {
     local elf=$1 dir=$2 b e
@@ -118,9 +125,7 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu/$t/release/fixshade-config
             d=$OUT/config/$t/$level
-            mkdir -p "$d"
-            arm-none-eabi-size -A "$elf" > "$d/size.txt"
-            arm-none-eabi-nm -S --size-sort -C "$elf" > "$d/nm.txt"
+            sizes "$elf" "$d"
             if [ $level = none ]; then
                 (cd "$d" && timeout 300 "${QEMU[@]}" -kernel "$elf" > "$d/console.log")
             else
@@ -145,9 +150,7 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                 --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-explicit/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
-            mkdir -p "$e"
-            arm-none-eabi-size -A "$elf" > "$e/size.txt"
-            arm-none-eabi-nm -S --size-sort -C "$elf" > "$e/nm.txt"
+            sizes "$elf" "$e"
             run_counted "$elf" "$e"
             if ! cmp -s <(sed 's/ stack=.*//' "$d/console.log") <(sed 's/ stack=.*//' "$e/console.log"); then
                 echo "  $level: the explicit call drew another frame: $(cat "$e/console.log")"

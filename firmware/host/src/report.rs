@@ -529,15 +529,22 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     }
 }
 
+/// The symbols of `arm-none-eabi-nm -S -C` output: size, kind (`t`, `b`,
+/// …) and name.
+fn symbols(nm: &str) -> impl Iterator<Item = (u64, &str, &str)> {
+    nm.lines().filter_map(|l| {
+        let mut w = l.splitn(4, ' ');
+        let (_, size, kind, name) = (w.next()?, w.next()?, w.next()?, w.next()?);
+        Some((u64::from_str_radix(size, 16).ok()?, kind, name))
+    })
+}
+
 /// Bytes of the symbols of `arm-none-eabi-nm -S -C` output whose name
 /// satisfies `pick`.
 fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
-    nm.lines()
-        .filter_map(|l| {
-            let mut w = l.splitn(4, ' ');
-            let (_, size, _, name) = (w.next()?, w.next()?, w.next()?, w.next()?);
-            pick(name).then(|| u64::from_str_radix(size, 16).ok())?
-        })
+    symbols(nm)
+        .filter(|&(_, _, name)| pick(name))
+        .map(|(size, _, _)| size)
         .sum()
 }
 
@@ -553,13 +560,9 @@ const ALLOCATION_SLACK: u64 = 16;
 /// The sizes of the functions (`t`/`T` symbols) of an `arm-none-eabi-nm
 /// -S -C` listing, by name.
 fn functions(nm: &str) -> BTreeMap<String, u64> {
-    nm.lines()
-        .filter_map(|l| {
-            let mut w = l.splitn(4, ' ');
-            let (_, size, kind, name) = (w.next()?, w.next()?, w.next()?, w.next()?);
-            let size = u64::from_str_radix(size, 16).ok()?;
-            matches!(kind, "t" | "T").then(|| (name.to_string(), size))
-        })
+    symbols(nm)
+        .filter(|&(_, kind, _)| matches!(kind, "t" | "T"))
+        .map(|(size, _, name)| (name.to_string(), size))
         .collect()
 }
 
