@@ -423,16 +423,20 @@ where
     /// assert!(px.iter().all(|&p| p == 0));
     /// ```
     #[inline(always)]
-    pub fn draw<O: Output<D>>(
-        mut self,
-        output: &mut O,
-    ) -> Result<DrawStats, RenderError<O::Error>> {
-        normals_for::<M>(self.mesh).map_err(RenderError::lift)?;
-        // A copy: a pointer into the builder would keep the builder (and
-        // the mesh's length) in memory through the draw.
-        let model = self.model;
-        let p = self.renderer.prepare(&model);
-        output.render::<S, V, L, M, C>(&p, self.mesh, &mut self.depth, &mut self.vertices)
+    pub fn draw<O: Output<D>>(self, output: &mut O) -> Result<DrawStats, RenderError<O::Error>> {
+        // Taken apart: a pointer into the builder would keep it in memory
+        // through the draw, and with it the addresses of the lights and
+        // the material, whose constants would then no longer fold.
+        let Shaded {
+            mesh,
+            renderer,
+            model,
+            mut depth,
+            mut vertices,
+        } = self;
+        normals_for::<M>(mesh).map_err(RenderError::lift)?;
+        let p = renderer.prepare(&model);
+        output.render::<S, V, L, M, C>(&p, mesh, &mut depth, &mut vertices)
     }
 }
 
