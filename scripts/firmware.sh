@@ -9,23 +9,23 @@
 #     compares every frame byte for byte with the host's (exit 1 if any
 #     differs);
 #  3. counts the instructions of every render call with the plugin;
-#  4. builds the flash/RAM scene configurations for both targets, sizes
+#  4. builds the same firmware again drawn through the kernel's explicit
+#     call (`--cfg fixshade_explicit_draw`, src/explicit.rs), runs and
+#     counts it, and checks its frames the same way;
+#  5. builds the flash/RAM scene configurations for both targets, sizes
 #     them with arm-none-eabi-size, runs them for the stack high-water
 #     mark and the instruction count; the `s1` configuration (standard
 #     scene S1 and nothing more) must print the checksum of the host's S1
-#     frame (exit 1 if not); builds each again drawn through the kernel's
-#     explicit call (`--cfg fixshade_explicit_draw`, src/explicit.rs),
-#     sized, listed and counted the same way: the report fails (exit 1,
-#     after writing it) where the draw call's code differs from that
-#     call's but in the caller (the render call, into which both inline the
-#     set-up), or exceeds it there or in instructions by more than register
-#     allocation moves (firmware/host/src/report.rs);
-#  5. writes report/firmware_counts.json and report/firmware.md (into
+#     frame (exit 1 if not); builds each again through the explicit call;
+#     the report fails (exit 1, after writing it) where any build drawn by
+#     the draw call differs from its explicit-call build: a function's
+#     size, .text or a draw's instructions (firmware/host/src/report.rs);
+#  6. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
 #     harness's arm.tsv works too).
 # Needs: qemu-system-arm, binutils-arm-none-eabi, gcc, the two Rust targets.
-# FIRMWARE_QUICK=1 skips step 4, and then writes the report into
+# FIRMWARE_QUICK=1 skips steps 4 and 5, and then writes the report into
 # $OUT/report unless FIRMWARE_REPORT is set, so that a quick run leaves
 # the committed report, which has the configurations, alone.
 set -euo pipefail
@@ -43,7 +43,7 @@ PEERS_TSV=${FIRMWARE_PEERS_TSV:-firmware/peers/tgx.tsv}
 rm -rf "$OUT"
 mkdir -p "$OUT"
 
-QEMU=(qemu-system-arm -machine mps2-an386 -nographic -monitor none -serial none
+QEMU=(qemu-system-arm -nographic -monitor none -serial none
       -semihosting-config enable=on,target=native)
 
 echo "== plugin"
@@ -64,59 +64,75 @@ sizes() {
     arm-none-eabi-nm -S --size-sort -C "$1" > "$2/nm.txt"
 }
 
-# run_counted ELF DIR: runs ELF in QEMU in DIR with the plugin; counts in DIR/counts.txt.
+# run_counted ELF DIR [MACHINE]: runs ELF in QEMU (mps2-an386 unless
+# MACHINE) in DIR with the plugin; counts in DIR/counts.txt.
 run_counted() {
-    local elf=$1 dir=$2 b e
+    local elf=$1 dir=$2 machine=${3:-mps2-an386} b e
     b=$(sym "$elf" fw_count_begin)
     e=$(sym "$elf" fw_count_end)
     [ -n "$b" ] && [ -n "$e" ] || { echo "no marker symbols in $elf" >&2; return 1; }
     mkdir -p "$dir"
-    (cd "$dir" && timeout 900 "${QEMU[@]}" \
+    (cd "$dir" && timeout 900 "${QEMU[@]}" -machine "$machine" \
         -plugin "$OUT/libinsn_count.so,begin=$b,end=$e,out=$dir/counts.txt" \
-        -kernel "$elf" > "$dir/console.log")
+        -kernel "$elf" > "$dir/console.log") || { echo "$elf failed"; cat "$dir/console.log"; exit 1; }
 }
 
-status=0
-for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
-    echo "== firmware for $t"
-    (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-fw)
-    elf=$TGT/qemu/$t/release/fixshade-fw
-    run_counted "$elf" "$OUT/$t" || { echo "firmware failed on $t"; cat "$OUT/$t/console.log"; exit 1; }
-    for f in "$OUT/host"/s*.bin; do
+# same_frames PATTERN DIR: every host frame matching PATTERN is in DIR,
+# byte for byte (status 1 if not).
+same_frames() {
+    local f n
+    for f in "$OUT/host"/$1; do
         n=$(basename "$f")
-        if cmp -s "$f" "$OUT/$t/$n"; then
+        if cmp -s "$f" "$2/$n"; then
             echo "  $n: identical to the host's"
         else
             echo "  $n: DIFFERS from the host's"
             status=1
         fi
     done
+}
+
+# explicit T: cargo's --config that builds for target T through the
+# kernel's explicit call (src/explicit.rs): the cfg added to the flags
+# of the crate's .cargo/config.toml, not replacing them.
+explicit() { echo "target.$1.rustflags=['--cfg','fixshade_explicit_draw']"; }
+
+status=0
+for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+    echo "== firmware for $t"
+    (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-fw)
+    elf=$TGT/qemu/$t/release/fixshade-fw
+    run_counted "$elf" "$OUT/$t"
+    sizes "$elf" "$OUT/$t"
+    same_frames 's*.bin' "$OUT/$t"
 done
 echo "== firmware for the Cortex-M0 with 16 KB of RAM (QEMU microbit), band by band"
 (cd firmware/microbit && CARGO_TARGET_DIR=$TGT/microbit cargo build --release -q)
 elf=$TGT/microbit/thumbv6m-none-eabi/release/fixshade-fw-m0
-d=$OUT/microbit
-mkdir -p "$d"
-b=$(sym "$elf" fw_count_begin)
-e=$(sym "$elf" fw_count_end)
-(cd "$d" && timeout 900 qemu-system-arm -machine microbit -nographic -monitor none -serial none \
-    -semihosting-config enable=on,target=native \
-    -plugin "$OUT/libinsn_count.so,begin=$b,end=$e,out=$d/counts.txt" \
-    -kernel "$elf" > "$d/console.log") || { echo "microbit firmware failed"; cat "$d/console.log"; exit 1; }
-arm-none-eabi-size -A "$elf" > "$d/size.txt"
-echo "  $(cat "$d/console.log")"
-for f in "$OUT/host"/m0_*.bin; do
-    n=$(basename "$f")
-    if cmp -s "$f" "$d/$n"; then
-        echo "  $n: identical to the host's"
-    else
-        echo "  $n: DIFFERS from the host's"
-        status=1
-    fi
-done
+run_counted "$elf" "$OUT/microbit" microbit
+sizes "$elf" "$OUT/microbit"
+echo "  $(cat "$OUT/microbit/console.log")"
+same_frames 'm0_*.bin' "$OUT/microbit"
 [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
 if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
+    echo "== the same firmware drawn through the explicit call"
+    for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+        (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
+            --config "$(explicit $t)" --target $t --bin fixshade-fw)
+        elf=$TGT/qemu-explicit/$t/release/fixshade-fw
+        run_counted "$elf" "$OUT/explicit/$t"
+        sizes "$elf" "$OUT/explicit/$t"
+        same_frames 's*.bin' "$OUT/explicit/$t"
+    done
+    (cd firmware/microbit && CARGO_TARGET_DIR=$TGT/microbit-explicit cargo build --release -q \
+        --config "$(explicit thumbv6m-none-eabi)")
+    elf=$TGT/microbit-explicit/thumbv6m-none-eabi/release/fixshade-fw-m0
+    run_counted "$elf" "$OUT/explicit/microbit" microbit
+    sizes "$elf" "$OUT/explicit/microbit"
+    same_frames 'm0_*.bin' "$OUT/explicit/microbit"
+    [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
+
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
         echo "== scene configurations for $t"
         for level in none ambient lambert specular point spot depth phong s1; do
@@ -127,7 +143,7 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             d=$OUT/config/$t/$level
             sizes "$elf" "$d"
             if [ $level = none ]; then
-                (cd "$d" && timeout 300 "${QEMU[@]}" -kernel "$elf" > "$d/console.log")
+                (cd "$d" && timeout 300 "${QEMU[@]}" -machine mps2-an386 -kernel "$elf" > "$d/console.log")
             else
                 run_counted "$elf" "$d"
             fi
@@ -146,8 +162,7 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             # own target directory: the cfg, added to the target's flags
             # of firmware/qemu/.cargo/config.toml, changes every crate's).
             (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
-                --config "target.$t.rustflags=['--cfg','fixshade_explicit_draw']" \
-                --target $t --bin fixshade-config "${feat[@]}")
+                --config "$(explicit $t)" --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-explicit/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
             sizes "$elf" "$e"

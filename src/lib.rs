@@ -89,9 +89,13 @@ pub mod band;
 pub mod camera;
 pub mod color;
 pub mod depth;
+// The draw call's last step; public, as the firmware's baseline, only
+// with `--cfg fixshade_explicit_draw`.
 #[cfg(fixshade_explicit_draw)]
 #[doc(hidden)]
 pub mod explicit;
+#[cfg(not(fixshade_explicit_draw))]
+mod explicit;
 pub mod framebuffer;
 pub mod illumination;
 pub mod light;

@@ -429,14 +429,23 @@ where
         // the material, whose constants would then no longer fold.
         let Shaded {
             mesh,
-            renderer,
+            renderer: r,
             model,
-            mut depth,
+            depth,
             mut vertices,
         } = self;
-        normals_for::<M>(mesh).map_err(RenderError::lift)?;
-        let p = renderer.prepare(&model);
-        output.render::<S, V, L, M, C>(&p, mesh, &mut depth, &mut vertices)
+        crate::explicit::draw::<M, V, S, L, O, D, C>(
+            r.camera,
+            r.material,
+            r.lights,
+            r.ambient,
+            r.options,
+            mesh,
+            model,
+            depth,
+            &mut vertices,
+            output,
+        )
     }
 }
 

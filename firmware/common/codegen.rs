@@ -255,6 +255,53 @@ pub fn setup(d: &SceneDesc) -> Setup {
     }
 }
 
+/// The draw of a generated render function, binding `res`: the draw call
+/// as a program writes it, or, built with `--cfg fixshade_explicit_draw`,
+/// the same draw as one explicit call of the kernel (src/explicit.rs), the
+/// baseline scripts/firmware.sh holds the draw call to. Expects `camera`,
+/// `material`, `lights` and `mesh` in scope; `output` is the draw's output
+/// argument, `depth` the depth test's binding if the scene has one,
+/// `cache` the vertex cache's if the draw keeps its vertices.
+pub fn draw(c: &Setup, output: &str, depth: Option<&str>, cache: Option<&str>) -> String {
+    let with_depth = depth.map_or(String::new(), |d| format!("\n            .with_depth({d})"));
+    let with_cache = cache.map_or(String::new(), |v| format!("\n            .with_cache({v})"));
+    let depth = depth.unwrap_or("fixshade::depth::NoDepth");
+    let cache = cache.map_or("&mut fixshade::band::Recomputed".to_string(), |v| {
+        format!("&mut fixshade::band::Cached({v})")
+    });
+    format!(
+        "#[cfg(not(fixshade_explicit_draw))]
+    let res = {{
+        let r = fixshade::Renderer::new(&camera, &material, &lights)
+            .with_ambient({ambient})
+            .with_viewer({viewer})
+            .with_shading({shading})
+            .with_options({options});
+        mesh.shaded(&r)
+            .with_model({model}){with_depth}{with_cache}
+            .draw({output})
+    }};
+    #[cfg(fixshade_explicit_draw)]
+    let res = fixshade::explicit::draw::<{shading}, {viewer}, _, _, _, _, _>(
+        &camera,
+        &material,
+        &lights,
+        {ambient},
+        {options},
+        &mesh,
+        {model},
+        {depth},
+        {cache},
+        {output},
+    );",
+        ambient = c.ambient,
+        viewer = c.viewer,
+        shading = c.shading,
+        options = c.options,
+        model = c.model,
+    )
+}
+
 /// The `use` lines the generated source needs.
 pub const PRELUDE: &str = "#[allow(unused_imports)]
 use fixshade::camera::{Camera, Projection};

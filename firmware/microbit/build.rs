@@ -22,13 +22,13 @@ fn main() {
         // The mesh as bytes, read in place from flash by `include_mesh!`.
         let file = format!("{}.fxm", v.mesh);
         fs::write(out.join(&file), codegen::mesh_bytes(&v.desc.mesh)).expect("mesh bytes");
-        let (depth, with_depth) = if c.depth {
+        let (depth, depth_arg) = if c.depth {
             (
                 "let mut db = fixshade::depth::DepthBand::new(depth);",
-                "\n        .with_depth(&mut db)",
+                Some("&mut db"),
             )
         } else {
-            ("let _ = depth;", "")
+            ("let _ = depth;", None)
         };
         let _ = write!(
             s,
@@ -43,17 +43,11 @@ pub fn render_{name}(target: &mut super::Stream, colour: &mut [u16], depth: &mut
     let lights: {lights_type} = {lights};
     let mesh = fixshade::include_mesh!(concat!(env!(\"OUT_DIR\"), \"/{file}\"))
         .map_err(fixshade::render::RenderError::Mesh)?;
-    let r = fixshade::Renderer::new(&camera, &material, &lights)
-        .with_ambient({ambient})
-        .with_viewer({viewer})
-        .with_shading({shading})
-        .with_options({options});
     let mut bands = fixshade::band::Bands::new(target, colour, super::ROWS as u32)
         .with_background(Rgb565::from(RawU16::new({bg})));
     {depth}
-    mesh.shaded(&r)
-        .with_model({model}){with_depth}
-        .draw(&mut bands)
+    {draw}
+    res
 }}
 ",
             name = v.name,
@@ -61,12 +55,8 @@ pub fn render_{name}(target: &mut super::Stream, colour: &mut [u16], depth: &mut
             material = c.material,
             lights_type = c.lights_type,
             lights = c.lights,
-            viewer = c.viewer,
-            model = c.model,
-            ambient = c.ambient,
-            options = c.options,
-            shading = c.shading,
             bg = c.background,
+            draw = codegen::draw(&c, "&mut bands", depth_arg, None),
         );
         let _ = writeln!(
             table,

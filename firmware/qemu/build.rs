@@ -33,15 +33,15 @@ fn main() {
         let (w, h) = (v.desc.width, v.desc.height);
         // `DepthBuffer::new` clears the buffer; without a depth test the
         // draw has none (`with_depth` omitted).
-        let (depth, with_depth) = if c.depth {
+        let (depth, depth_arg) = if c.depth {
             (
                 format!(
                     "let mut db = DepthBuffer::new(depth, {w}, {h}).map_err(|_| RenderError::DepthTooSmall)?;"
                 ),
-                "\n        .with_depth(&mut db)",
+                Some("&mut db"),
             )
         } else {
-            ("let _ = depth;".to_string(), "")
+            ("let _ = depth;".to_string(), None)
         };
         let _ = write!(
             s,
@@ -59,16 +59,7 @@ pub fn render_{name}(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [Cache
     fb.clear(Rgb565::from(RawU16::new({bg})));
     {depth}
     crate::count::begin();
-    let r = Renderer::new(&camera, &material, &lights)
-        .with_ambient({ambient})
-        .with_viewer({viewer})
-        .with_shading({shading})
-        .with_options({options});
-    let res = mesh
-        .shaded(&r)
-        .with_model({model}){with_depth}
-        .with_cache(cache)
-        .draw(fb);
+    {draw}
     crate::count::end();
     res
 }}
@@ -79,11 +70,7 @@ pub fn render_{name}(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [Cache
             lights_type = c.lights_type,
             lights = c.lights,
             bg = c.background,
-            viewer = c.viewer,
-            model = c.model,
-            ambient = c.ambient,
-            options = c.options,
-            shading = c.shading,
+            draw = codegen::draw(&c, "fb", depth_arg, Some("cache")),
         );
         let _ = writeln!(
             table,

@@ -502,7 +502,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     let mut problems = Vec::new();
     if cfg.is_dir() {
         configurations(&cfg, &mut md, &mut js)?;
-        problems = draw_call_cost(&cfg, &raw.join("config-explicit"), &mut md)?;
+        problems = draw_call_cost(raw, &mut md)?;
     } else {
         let _ = writeln!(
             md,
@@ -557,31 +557,143 @@ fn functions(nm: &str) -> BTreeMap<String, u64> {
         .collect()
 }
 
+/// The functions of two `arm-none-eabi-nm -S -C` listings (in `a` and
+/// `e`) that differ in size or are in one only, as table cells.
+fn differing_functions(a: &Path, e: &Path) -> Result<Vec<String>, String> {
+    let (fa, fe) = (
+        functions(&read(&a.join("nm.txt"))?),
+        functions(&read(&e.join("nm.txt"))?),
+    );
+    let show = |v: Option<&u64>| v.map_or("none".to_string(), |v| format!("{v} B"));
+    Ok(fa
+        .keys()
+        .chain(fe.keys().filter(|n| !fa.contains_key(*n)))
+        .filter(|n| fa.get(*n) != fe.get(*n))
+        .map(|n| format!("`{n}` {} / {}", show(fa.get(n)), show(fe.get(n))))
+        .collect())
+}
+
+/// The items joined, or `none`.
+fn none_or(items: &[String]) -> String {
+    if items.is_empty() {
+        "none".to_string()
+    } else {
+        items.join(", ")
+    }
+}
+
+/// `x (same)` or `x / y (±d)`.
+fn pair(x: u64, y: u64) -> String {
+    if x == y {
+        format!("{x} (same)")
+    } else {
+        format!("{x} / {y} ({:+})", x as i64 - y as i64)
+    }
+}
+
+/// The frame names of a firmware's console log, in the order of its
+/// counts: `frame NAME …` lines (firmware/qemu), `m0 frame=NAME …` lines
+/// (firmware/microbit).
+fn frame_names(log: &str) -> Vec<String> {
+    log.lines()
+        .filter_map(|l| {
+            if let Some(rest) = l.strip_prefix("frame ") {
+                rest.split_whitespace().next().map(str::to_string)
+            } else if l.starts_with("m0 ") {
+                fields(l).get("frame").cloned()
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+/// The firmware builds compared with their explicit-call builds
+/// (`raw/DIR` against `raw/explicit/DIR`), and what they draw.
+const FIRMWARE: [(&str, &str); 3] = [
+    (
+        "thumbv7em-none-eabihf",
+        "Cortex-M4F: every frame of the first table, whole-frame `Framebuffer`, vertex cache",
+    ),
+    (
+        "thumbv6m-none-eabi",
+        "Cortex-M0+: every frame of the first table, whole-frame `Framebuffer`, vertex cache",
+    ),
+    (
+        "microbit",
+        "Cortex-M0, 16 KB: `Bands` into a `DrawTarget`, vertices recomputed",
+    ),
+];
+
 /// The draw call against the explicit call (src/explicit.rs): each
-/// configuration under `cfg` (`cfg/TARGET/LEVEL/`) built again under
-/// `explicit`, side by side: .text, instructions, and the functions whose
-/// code differs. The problems found, for [`run`] to fail on once the
-/// report is written: any difference at all, in a function's size, in
-/// .text or in the draw's instructions (the draw call is to add no byte
-/// and no instruction; neither is it expected to save any, which would
-/// mean the baseline is not the same draw).
-fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<Vec<String>, String> {
+/// configuration under `raw/config` built again under
+/// `raw/config-explicit`, and each firmware of [`FIRMWARE`] under
+/// `raw/explicit`, side by side: .text, instructions, and the functions
+/// whose code differs. The problems found, for [`run`] to fail on once
+/// the report is written: any difference at all, in a function's size, in
+/// .text or in a draw's instructions (the draw call is to add no byte and
+/// no instruction; neither is it expected to save any, which would mean
+/// the baseline is not the same draw).
+fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
+    let (cfg, explicit) = (raw.join("config"), raw.join("config-explicit"));
     let _ = writeln!(
         md,
         "## What the draw call costs\n\n\
-         Each configuration above built twice: drawn by the draw call \
-         (`mesh.shaded(&renderer).with_model(..).with_depth(..).with_cache(..).draw(&mut fb)`, \
+         Each firmware build drawn twice: by the draw call \
+         (`mesh.shaded(&renderer).with_model(..).with_depth(..).with_cache(..).draw(output)`, \
          every type inferred), and by one explicit call of the same kernel with every argument \
-         given at once and every choice a type parameter (`fixshade::explicit::draw`, compiled \
-         only with `--cfg fixshade_explicit_draw`). The same frames; .text as above; \
-         instructions of the render call; \"functions that differ\": the functions of the two \
-         builds (`arm-none-eabi-nm -S`) that differ in size or are in one only. \
-         scripts/firmware.sh fails on any difference: a function, .text or the draw's \
-         instructions.\n\n\
+         given at once and every choice a type parameter (`fixshade::explicit::draw`, public \
+         only with `--cfg fixshade_explicit_draw`). The same frames; .text; instructions of \
+         the render calls; \"functions that differ\": the functions of the two builds \
+         (`arm-none-eabi-nm -S`) that differ in size or are in one only. scripts/firmware.sh \
+         fails on any difference: a function, .text or a draw's instructions.\n\n\
+         | firmware | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
+         | --- | ---: | --- | --- |"
+    );
+    let mut problems = Vec::new();
+    for (dir, what) in FIRMWARE {
+        let (ad, ed) = (raw.join(dir), raw.join("explicit").join(dir));
+        let text = |d: &Path| -> Result<u64, String> {
+            let size = read(&d.join("size.txt"))?;
+            Ok(section(&size, ".text") + section(&size, ".vector_table"))
+        };
+        let (at, et) = (text(&ad)?, text(&ed)?);
+        let (ac, ec) = (
+            counts(&ad.join("counts.txt"))?,
+            counts(&ed.join("counts.txt"))?,
+        );
+        let names = frame_names(&read(&ad.join("console.log"))?);
+        if ac.len() != ec.len() || ac.len() != names.len() {
+            return Err(format!("{dir}: the two builds counted different frames"));
+        }
+        let frames: Vec<String> = names
+            .iter()
+            .zip(ac.iter().zip(&ec))
+            .filter(|(_, (a, e))| a != e)
+            .map(|(n, (&a, &e))| format!("{n} {}", pair(a, e)))
+            .collect();
+        let differ = differing_functions(&ad, &ed)?;
+        if at != et || !frames.is_empty() || !differ.is_empty() {
+            problems.push(format!("{dir}: the draw call's build differs"));
+        }
+        let frames = if frames.is_empty() {
+            format!("all {} frames the same", ac.len())
+        } else {
+            frames.join(", ")
+        };
+        let _ = writeln!(
+            md,
+            "| {what} | {} | {frames} | {} |",
+            pair(at, et),
+            none_or(&differ)
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\nThe scene configurations above, one draw each:\n\n\
          | configuration | core | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
          | --- | --- | ---: | ---: | --- |"
     );
-    let mut problems = Vec::new();
     for (level, what, _) in LEVELS.iter().skip(1) {
         // (The S1 row's note on its Δ columns does not apply here.)
         let what = what.split(" (Δ").next().unwrap_or(what);
@@ -593,42 +705,16 @@ fn draw_call_cost(cfg: &Path, explicit: &Path, md: &mut String) -> Result<Vec<St
                     .ok_or_else(|| format!("{}: no instruction count", d.display()))
             };
             let (ai, ei) = (count(&a, &ad)?, count(&e, &ed)?);
-            let (fa, fe) = (
-                functions(&read(&ad.join("nm.txt"))?),
-                functions(&read(&ed.join("nm.txt"))?),
-            );
-            let mut differ: Vec<String> = Vec::new();
-            for name in fa.keys().chain(fe.keys().filter(|n| !fa.contains_key(*n))) {
-                let (x, y) = (fa.get(name), fe.get(name));
-                if x != y {
-                    let show = |v: Option<&u64>| v.map_or("none".to_string(), |v| format!("{v} B"));
-                    differ.push(format!("`{name}` {} / {}", show(x), show(y)));
-                    problems.push(format!("{core} {level}: `{name}` differs"));
-                }
+            let differ = differing_functions(&ad, &ed)?;
+            if a.text != e.text || ai != ei || !differ.is_empty() {
+                problems.push(format!("{core} {level}: the draw call's build differs"));
             }
-            if a.text != e.text || ai != ei {
-                problems.push(format!(
-                    "{core} {level}: .text {} / {} B, the draw {ai} / {ei} instructions",
-                    a.text, e.text
-                ));
-            }
-            let pair = |x: u64, y: u64| {
-                if x == y {
-                    format!("{x} (same)")
-                } else {
-                    format!("{x} / {y} ({:+})", x as i64 - y as i64)
-                }
-            };
-            let differ = if differ.is_empty() {
-                "none".to_string()
-            } else {
-                differ.join(", ")
-            };
             let _ = writeln!(
                 md,
-                "| {what} | {core} | {} | {} | {differ} |",
+                "| {what} | {core} | {} | {} | {} |",
                 pair(a.text, e.text),
-                pair(ai, ei)
+                pair(ai, ei),
+                none_or(&differ)
             );
         }
     }

@@ -25,7 +25,6 @@ pub mod scenes {
     use fixshade::depth::DepthBuffer;
     use fixshade::framebuffer::Framebuffer;
     use fixshade::render::{CachedVertex, DrawStats, RenderError};
-    use fixshade::Renderer;
 
     use crate::Variant;
 

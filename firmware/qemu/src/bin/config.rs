@@ -95,18 +95,18 @@ fn render(fb: &mut Framebuffer, depth: &mut [u16], cache: &mut [CachedVertex]) -
         #[cfg(feature = "depth-buffer")]
         let depth = &mut db;
         #[cfg(not(feature = "depth-buffer"))]
-        let depth = &mut fixshade::depth::NoDepth;
+        let depth = fixshade::depth::NoDepth;
         fixshade::explicit::draw::<Mode, fixshade::illumination::InfiniteViewer, _, _, _, _, _>(
             &S1_CAMERA,
-            Mat4::IDENTITY,
             &material,
-            S1_AMBIENT,
             &lights,
+            S1_AMBIENT,
             RenderOptions::default(),
             &mesh,
-            fb,
+            Mat4::IDENTITY,
             depth,
             &mut fixshade::band::Cached(cache),
+            fb,
         )
     };
     count::end();
