@@ -81,6 +81,7 @@ run_counted() {
 # byte for byte (status 1 if not).
 same_frames() {
     local f n
+    compgen -G "$OUT/host/$1" > /dev/null || { echo "  no host frame $1"; status=1; return; }
     for f in "$OUT/host"/$1; do
         n=$(basename "$f")
         if cmp -s "$f" "$2/$n"; then
@@ -94,7 +95,8 @@ same_frames() {
 
 # explicit T: cargo's --config that builds for target T through the
 # kernel's explicit call (src/explicit.rs): the cfg added to the flags
-# of the crate's .cargo/config.toml, not replacing them.
+# of the crate's .cargo/config.toml, not replacing them. A build with it
+# goes to a target directory of its own: the flags change every crate's.
 explicit() { echo "target.$1.rustflags=['--cfg','fixshade_explicit_draw']"; }
 
 status=0
@@ -158,9 +160,7 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                 fi
             fi
             [ $level = none ] && continue
-            # The same configuration drawn through the explicit call (its
-            # own target directory: the cfg, added to the target's flags
-            # of firmware/qemu/.cargo/config.toml, changes every crate's).
+            # The same configuration drawn through the explicit call.
             (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
                 --config "$(explicit $t)" --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-explicit/$t/release/fixshade-config

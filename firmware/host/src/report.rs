@@ -147,6 +147,12 @@ struct Config {
     pixels: u64,
 }
 
+/// The code of an `arm-none-eabi-size -A` listing: .text and the vector
+/// table.
+fn text_bytes(size: &str) -> u64 {
+    section(size, ".text") + section(size, ".vector_table")
+}
+
 fn section(size: &str, name: &str) -> u64 {
     size.lines()
         .filter_map(|l| {
@@ -170,7 +176,7 @@ fn config(dir: &Path) -> Result<Config, String> {
         Err(_) => None,
     };
     Ok(Config {
-        text: section(&size, ".text") + section(&size, ".vector_table"),
+        text: text_bytes(&size),
         rodata: section(&size, ".rodata"),
         bss: section(&size, ".bss") + section(&size, ".data"),
         stack: num(&f, "stack")?,
@@ -456,7 +462,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
          | frame | instructions | drawn pixels | stack high-water (B) | RAM never touched (B) |\n\
          | --- | ---: | ---: | ---: | ---: |",
         num(&m0_lines[0], "rows")?,
-        section(&m0_size, ".text") + section(&m0_size, ".vector_table"),
+        text_bytes(&m0_size),
         section(&m0_size, ".rodata"),
         section(&m0_size, ".bss"),
     );
@@ -549,12 +555,17 @@ fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
 }
 
 /// The sizes of the functions (`t`/`T` symbols) of an `arm-none-eabi-nm
-/// -S -C` listing, by name.
-fn functions(nm: &str) -> BTreeMap<String, u64> {
-    symbols(nm)
-        .filter(|&(_, kind, _)| matches!(kind, "t" | "T"))
-        .map(|(size, _, name)| (name.to_string(), size))
-        .collect()
+/// -S -C` listing, by name, sorted: the demangled name of a generic
+/// function is the same for each of its instantiations.
+fn functions(nm: &str) -> BTreeMap<String, Vec<u64>> {
+    let mut f: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+    for (size, _, name) in symbols(nm).filter(|&(_, kind, _)| matches!(kind, "t" | "T")) {
+        f.entry(name.to_string()).or_default().push(size);
+    }
+    for sizes in f.values_mut() {
+        sizes.sort_unstable();
+    }
+    f
 }
 
 /// The functions of two `arm-none-eabi-nm -S -C` listings (in `a` and
@@ -564,7 +575,12 @@ fn differing_functions(a: &Path, e: &Path) -> Result<Vec<String>, String> {
         functions(&read(&a.join("nm.txt"))?),
         functions(&read(&e.join("nm.txt"))?),
     );
-    let show = |v: Option<&u64>| v.map_or("none".to_string(), |v| format!("{v} B"));
+    let show = |v: Option<&Vec<u64>>| {
+        v.map_or("none".to_string(), |v| {
+            let b: Vec<String> = v.iter().map(u64::to_string).collect();
+            format!("{} B", b.join(" + "))
+        })
+    };
     Ok(fa
         .keys()
         .chain(fe.keys().filter(|n| !fa.contains_key(*n)))
@@ -608,27 +624,17 @@ fn frame_names(log: &str) -> Vec<String> {
         .collect()
 }
 
-/// The firmware builds compared with their explicit-call builds
-/// (`raw/DIR` against `raw/explicit/DIR`), and what they draw.
-const FIRMWARE: [(&str, &str); 3] = [
-    (
-        "thumbv7em-none-eabihf",
-        "Cortex-M4F: every frame of the first table, whole-frame `Framebuffer`, vertex cache",
-    ),
-    (
-        "thumbv6m-none-eabi",
-        "Cortex-M0+: every frame of the first table, whole-frame `Framebuffer`, vertex cache",
-    ),
-    (
-        "microbit",
-        "Cortex-M0, 16 KB: `Bands` into a `DrawTarget`, vertices recomputed",
-    ),
-];
+/// The 16 KB Cortex-M0's firmware, compared with its explicit-call build
+/// beside the two targets' whole-frame firmware.
+const MICROBIT: (&str, &str) = (
+    "microbit",
+    "Cortex-M0, 16 KB: `Bands` into a `DrawTarget`, vertices recomputed",
+);
 
 /// The draw call against the explicit call (src/explicit.rs): each
 /// configuration under `raw/config` built again under
-/// `raw/config-explicit`, and each firmware of [`FIRMWARE`] under
-/// `raw/explicit`, side by side: .text, instructions, and the functions
+/// `raw/config-explicit`, and each firmware (`raw/TARGET`, `raw/microbit`)
+/// under `raw/explicit`, side by side: .text, instructions, and the functions
 /// whose code differs. The problems found, for [`run`] to fail on once
 /// the report is written: any difference at all, in a function's size, in
 /// .text or in a draw's instructions (the draw call is to add no byte and
@@ -651,12 +657,18 @@ fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
          | --- | ---: | --- | --- |"
     );
     let mut problems = Vec::new();
-    for (dir, what) in FIRMWARE {
+    let firmware = TARGETS
+        .iter()
+        .map(|&(t, core)| {
+            let what = format!(
+                "{core}: every frame of the first table, whole-frame `Framebuffer`, vertex cache"
+            );
+            (t, what)
+        })
+        .chain([(MICROBIT.0, MICROBIT.1.to_string())]);
+    for (dir, what) in firmware {
         let (ad, ed) = (raw.join(dir), raw.join("explicit").join(dir));
-        let text = |d: &Path| -> Result<u64, String> {
-            let size = read(&d.join("size.txt"))?;
-            Ok(section(&size, ".text") + section(&size, ".vector_table"))
-        };
+        let text = |d: &Path| read(&d.join("size.txt")).map(|s| text_bytes(&s));
         let (at, et) = (text(&ad)?, text(&ed)?);
         let (ac, ec) = (
             counts(&ad.join("counts.txt"))?,
@@ -664,7 +676,12 @@ fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
         );
         let names = frame_names(&read(&ad.join("console.log"))?);
         if ac.len() != ec.len() || ac.len() != names.len() {
-            return Err(format!("{dir}: the two builds counted different frames"));
+            return Err(format!(
+                "{dir}: {} counts, {} counts of the explicit call's build, {} frames in the console log",
+                ac.len(),
+                ec.len(),
+                names.len()
+            ));
         }
         let frames: Vec<String> = names
             .iter()
@@ -673,14 +690,19 @@ fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
             .map(|(n, (&a, &e))| format!("{n} {}", pair(a, e)))
             .collect();
         let differ = differing_functions(&ad, &ed)?;
-        if at != et || !frames.is_empty() || !differ.is_empty() {
-            problems.push(format!("{dir}: the draw call's build differs"));
-        }
+        let same = at == et && frames.is_empty() && differ.is_empty();
         let frames = if frames.is_empty() {
             format!("all {} frames the same", ac.len())
         } else {
             frames.join(", ")
         };
+        if !same {
+            problems.push(format!(
+                "{what}: .text {}; instructions {frames}; functions {}",
+                pair(at, et),
+                none_or(&differ)
+            ));
+        }
         let _ = writeln!(
             md,
             "| {what} | {} | {frames} | {} |",
@@ -707,7 +729,12 @@ fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
             let (ai, ei) = (count(&a, &ad)?, count(&e, &ed)?);
             let differ = differing_functions(&ad, &ed)?;
             if a.text != e.text || ai != ei || !differ.is_empty() {
-                problems.push(format!("{core} {level}: the draw call's build differs"));
+                problems.push(format!(
+                    "{core} {level}: .text {}; instructions {}; functions {}",
+                    pair(a.text, e.text),
+                    pair(ai, ei),
+                    none_or(&differ)
+                ));
             }
             let _ = writeln!(
                 md,
