@@ -19,7 +19,7 @@
 #     frame (exit 1 if not); builds each again through the explicit call;
 #     the report fails (exit 1, after writing it) where any build drawn by
 #     the draw call differs from its explicit-call build: a function's
-#     size, .text or a draw's instructions (firmware/host/src/report.rs);
+#     size, .text or a draw's instructions (firmware/host/src/report/draw_call.rs);
 #  6. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
@@ -99,40 +99,46 @@ same_frames() {
 # goes to a target directory of its own: the flags change every crate's.
 explicit() { echo "target.$1.rustflags=['--cfg','fixshade_explicit_draw']"; }
 
+# qemu_firmware T TGT DIR [CARGO_ARGS…]: firmware/qemu's frames for
+# target T, built into TGT, run, counted and sized into DIR, checked.
+qemu_firmware() {
+    local t=$1 tgt=$2 dir=$3
+    shift 3
+    (cd firmware/qemu && CARGO_TARGET_DIR=$tgt cargo build --release -q "$@" --target $t --bin fixshade-fw)
+    run_counted "$tgt/$t/release/fixshade-fw" "$dir"
+    sizes "$tgt/$t/release/fixshade-fw" "$dir"
+    same_frames 's*.bin' "$dir"
+}
+
+# microbit_firmware TGT DIR [CARGO_ARGS…]: firmware/microbit's band
+# frames, the same way on QEMU's microbit.
+microbit_firmware() {
+    local tgt=$1 dir=$2 elf
+    shift 2
+    (cd firmware/microbit && CARGO_TARGET_DIR=$tgt cargo build --release -q "$@")
+    elf=$tgt/thumbv6m-none-eabi/release/fixshade-fw-m0
+    run_counted "$elf" "$dir" microbit
+    sizes "$elf" "$dir"
+    echo "  $(cat "$dir/console.log")"
+    same_frames 'm0_*.bin' "$dir"
+}
+
 status=0
 for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
     echo "== firmware for $t"
-    (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-fw)
-    elf=$TGT/qemu/$t/release/fixshade-fw
-    run_counted "$elf" "$OUT/$t"
-    sizes "$elf" "$OUT/$t"
-    same_frames 's*.bin' "$OUT/$t"
+    qemu_firmware $t "$TGT/qemu" "$OUT/$t"
 done
 echo "== firmware for the Cortex-M0 with 16 KB of RAM (QEMU microbit), band by band"
-(cd firmware/microbit && CARGO_TARGET_DIR=$TGT/microbit cargo build --release -q)
-elf=$TGT/microbit/thumbv6m-none-eabi/release/fixshade-fw-m0
-run_counted "$elf" "$OUT/microbit" microbit
-sizes "$elf" "$OUT/microbit"
-echo "  $(cat "$OUT/microbit/console.log")"
-same_frames 'm0_*.bin' "$OUT/microbit"
+microbit_firmware "$TGT/microbit" "$OUT/microbit"
 [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
 if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     echo "== the same firmware drawn through the explicit call"
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
-        (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
-            --config "$(explicit $t)" --target $t --bin fixshade-fw)
-        elf=$TGT/qemu-explicit/$t/release/fixshade-fw
-        run_counted "$elf" "$OUT/explicit/$t"
-        sizes "$elf" "$OUT/explicit/$t"
-        same_frames 's*.bin' "$OUT/explicit/$t"
+        qemu_firmware $t "$TGT/qemu-explicit" "$OUT/explicit/$t" --config "$(explicit $t)"
     done
-    (cd firmware/microbit && CARGO_TARGET_DIR=$TGT/microbit-explicit cargo build --release -q \
-        --config "$(explicit thumbv6m-none-eabi)")
-    elf=$TGT/microbit-explicit/thumbv6m-none-eabi/release/fixshade-fw-m0
-    run_counted "$elf" "$OUT/explicit/microbit" microbit
-    sizes "$elf" "$OUT/explicit/microbit"
-    same_frames 'm0_*.bin' "$OUT/explicit/microbit"
+    microbit_firmware "$TGT/microbit-explicit" "$OUT/explicit/microbit" \
+        --config "$(explicit thumbv6m-none-eabi)"
     [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do

@@ -184,19 +184,6 @@ impl<'l, S: Specular, L: LightSet, V: Viewer, M: ShadingMode> Renderer<'l, S, L,
     pub fn lighting(&self) -> Lighting<S, V, L> {
         Lighting::new(self.material, self.ambient, self.lights, &self.camera.view)
     }
-
-    /// The draw's constants for a model matrix.
-    #[inline(always)]
-    fn prepare(&self, model: &Mat4) -> Prepared<'l, S, V, L> {
-        Prepared::new(
-            self.camera,
-            model,
-            self.material,
-            self.ambient,
-            self.lights,
-            self.options,
-        )
-    }
 }
 
 impl<'m> Mesh<'m> {
@@ -465,12 +452,20 @@ where
         &self,
         target: &mut T,
     ) -> Result<Self::Output, T::Error> {
-        if let Err(e) = normals_for::<M>(self.mesh) {
-            return Ok(Err(e));
-        }
-        let model = self.model;
-        let p = self.renderer.prepare(&model);
-        match p.draw_target::<M, T, _, _>(self.mesh, target, &mut NoDepth, &mut Recomputed) {
+        let r = self.renderer;
+        let drawn = crate::explicit::draw::<M, V, S, L, T, NoDepth, Recomputed>(
+            r.camera,
+            r.material,
+            r.lights,
+            r.ambient,
+            r.options,
+            self.mesh,
+            self.model,
+            NoDepth,
+            &mut Recomputed,
+            target,
+        );
+        match drawn {
             Ok(stats) => Ok(Ok(stats)),
             Err(e) => e.split().map(Err),
         }

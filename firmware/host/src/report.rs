@@ -9,6 +9,8 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::Path;
 
+mod draw_call;
+
 /// Cycles per instruction assumed for the estimates (see `ESTIMATE_BASIS`).
 const CPI_M4: f64 = 1.3;
 const CPI_M0: f64 = 1.4;
@@ -508,7 +510,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     let mut problems = Vec::new();
     if cfg.is_dir() {
         configurations(&cfg, &mut md, &mut js)?;
-        problems = draw_call_cost(raw, &mut md)?;
+        problems = draw_call::draw_call_cost(raw, &mut md)?;
     } else {
         let _ = writeln!(
             md,
@@ -552,201 +554,6 @@ fn symbol_bytes(nm: &str, pick: impl Fn(&str) -> bool) -> u64 {
         .filter(|&(_, _, name)| pick(name))
         .map(|(size, _, _)| size)
         .sum()
-}
-
-/// The sizes of the functions (`t`/`T` symbols) of an `arm-none-eabi-nm
-/// -S -C` listing, by name, sorted: the demangled name of a generic
-/// function is the same for each of its instantiations.
-fn functions(nm: &str) -> BTreeMap<String, Vec<u64>> {
-    let mut f: BTreeMap<String, Vec<u64>> = BTreeMap::new();
-    for (size, _, name) in symbols(nm).filter(|&(_, kind, _)| matches!(kind, "t" | "T")) {
-        f.entry(name.to_string()).or_default().push(size);
-    }
-    for sizes in f.values_mut() {
-        sizes.sort_unstable();
-    }
-    f
-}
-
-/// The functions of two `arm-none-eabi-nm -S -C` listings (in `a` and
-/// `e`) that differ in size or are in one only, as table cells.
-fn differing_functions(a: &Path, e: &Path) -> Result<Vec<String>, String> {
-    let (fa, fe) = (
-        functions(&read(&a.join("nm.txt"))?),
-        functions(&read(&e.join("nm.txt"))?),
-    );
-    let show = |v: Option<&Vec<u64>>| {
-        v.map_or("none".to_string(), |v| {
-            let b: Vec<String> = v.iter().map(u64::to_string).collect();
-            format!("{} B", b.join(" + "))
-        })
-    };
-    Ok(fa
-        .keys()
-        .chain(fe.keys().filter(|n| !fa.contains_key(*n)))
-        .filter(|n| fa.get(*n) != fe.get(*n))
-        .map(|n| format!("`{n}` {} / {}", show(fa.get(n)), show(fe.get(n))))
-        .collect())
-}
-
-/// The items joined, or `none`.
-fn none_or(items: &[String]) -> String {
-    if items.is_empty() {
-        "none".to_string()
-    } else {
-        items.join(", ")
-    }
-}
-
-/// `x (same)` or `x / y (±d)`.
-fn pair(x: u64, y: u64) -> String {
-    if x == y {
-        format!("{x} (same)")
-    } else {
-        format!("{x} / {y} ({:+})", x as i64 - y as i64)
-    }
-}
-
-/// The frame names of a firmware's console log, in the order of its
-/// counts: `frame NAME …` lines (firmware/qemu), `m0 frame=NAME …` lines
-/// (firmware/microbit).
-fn frame_names(log: &str) -> Vec<String> {
-    log.lines()
-        .filter_map(|l| {
-            if let Some(rest) = l.strip_prefix("frame ") {
-                rest.split_whitespace().next().map(str::to_string)
-            } else if l.starts_with("m0 ") {
-                fields(l).get("frame").cloned()
-            } else {
-                None
-            }
-        })
-        .collect()
-}
-
-/// The 16 KB Cortex-M0's firmware, compared with its explicit-call build
-/// beside the two targets' whole-frame firmware.
-const MICROBIT: (&str, &str) = (
-    "microbit",
-    "Cortex-M0, 16 KB: `Bands` into a `DrawTarget`, vertices recomputed",
-);
-
-/// The draw call against the explicit call (src/explicit.rs): each
-/// configuration under `raw/config` built again under
-/// `raw/config-explicit`, and each firmware (`raw/TARGET`, `raw/microbit`)
-/// under `raw/explicit`, side by side: .text, instructions, and the functions
-/// whose code differs. The problems found, for [`run`] to fail on once
-/// the report is written: any difference at all, in a function's size, in
-/// .text or in a draw's instructions (the draw call is to add no byte and
-/// no instruction; neither is it expected to save any, which would mean
-/// the baseline is not the same draw).
-fn draw_call_cost(raw: &Path, md: &mut String) -> Result<Vec<String>, String> {
-    let (cfg, explicit) = (raw.join("config"), raw.join("config-explicit"));
-    let _ = writeln!(
-        md,
-        "## What the draw call costs\n\n\
-         Each firmware build drawn twice: by the draw call \
-         (`mesh.shaded(&renderer).with_model(..).with_depth(..).with_cache(..).draw(output)`, \
-         every type inferred), and by one explicit call of the same kernel with every argument \
-         given at once and every choice a type parameter (`fixshade::explicit::draw`, public \
-         only with `--cfg fixshade_explicit_draw`). The same frames; .text; instructions of \
-         the render calls; \"functions that differ\": the functions of the two builds \
-         (`arm-none-eabi-nm -S`) that differ in size or are in one only. scripts/firmware.sh \
-         fails on any difference: a function, .text or a draw's instructions.\n\n\
-         | firmware | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
-         | --- | ---: | --- | --- |"
-    );
-    let mut problems = Vec::new();
-    let firmware = TARGETS
-        .iter()
-        .map(|&(t, core)| {
-            let what = format!(
-                "{core}: every frame of the first table, whole-frame `Framebuffer`, vertex cache"
-            );
-            (t, what)
-        })
-        .chain([(MICROBIT.0, MICROBIT.1.to_string())]);
-    for (dir, what) in firmware {
-        let (ad, ed) = (raw.join(dir), raw.join("explicit").join(dir));
-        let text = |d: &Path| read(&d.join("size.txt")).map(|s| text_bytes(&s));
-        let (at, et) = (text(&ad)?, text(&ed)?);
-        let (ac, ec) = (
-            counts(&ad.join("counts.txt"))?,
-            counts(&ed.join("counts.txt"))?,
-        );
-        let names = frame_names(&read(&ad.join("console.log"))?);
-        if ac.len() != ec.len() || ac.len() != names.len() {
-            return Err(format!(
-                "{dir}: {} counts, {} counts of the explicit call's build, {} frames in the console log",
-                ac.len(),
-                ec.len(),
-                names.len()
-            ));
-        }
-        let frames: Vec<String> = names
-            .iter()
-            .zip(ac.iter().zip(&ec))
-            .filter(|(_, (a, e))| a != e)
-            .map(|(n, (&a, &e))| format!("{n} {}", pair(a, e)))
-            .collect();
-        let differ = differing_functions(&ad, &ed)?;
-        let same = at == et && frames.is_empty() && differ.is_empty();
-        let frames = if frames.is_empty() {
-            format!("all {} frames the same", ac.len())
-        } else {
-            frames.join(", ")
-        };
-        if !same {
-            problems.push(format!(
-                "{what}: .text {}; instructions {frames}; functions {}",
-                pair(at, et),
-                none_or(&differ)
-            ));
-        }
-        let _ = writeln!(
-            md,
-            "| {what} | {} | {frames} | {} |",
-            pair(at, et),
-            none_or(&differ)
-        );
-    }
-    let _ = writeln!(
-        md,
-        "\nThe scene configurations above, one draw each:\n\n\
-         | configuration | core | .text, draw call / explicit | instructions, draw call / explicit | functions that differ |\n\
-         | --- | --- | ---: | ---: | --- |"
-    );
-    for (level, what, _) in LEVELS.iter().skip(1) {
-        // (The S1 row's note on its Δ columns does not apply here.)
-        let what = what.split(" (Δ").next().unwrap_or(what);
-        for (t, core) in TARGETS {
-            let (ad, ed) = (cfg.join(t).join(level), explicit.join(t).join(level));
-            let (a, e) = (config(&ad)?, config(&ed)?);
-            let count = |c: &Config, d: &Path| {
-                c.instructions
-                    .ok_or_else(|| format!("{}: no instruction count", d.display()))
-            };
-            let (ai, ei) = (count(&a, &ad)?, count(&e, &ed)?);
-            let differ = differing_functions(&ad, &ed)?;
-            if a.text != e.text || ai != ei || !differ.is_empty() {
-                problems.push(format!(
-                    "{core} {level}: .text {}; instructions {}; functions {}",
-                    pair(a.text, e.text),
-                    pair(ai, ei),
-                    none_or(&differ)
-                ));
-            }
-            let _ = writeln!(
-                md,
-                "| {what} | {core} | {} | {} | {} |",
-                pair(a.text, e.text),
-                pair(ai, ei),
-                none_or(&differ)
-            );
-        }
-    }
-    md.push('\n');
-    Ok(problems)
 }
 
 /// The flash/RAM table of the scene configurations under `cfg`
