@@ -1,6 +1,6 @@
 //! Host only: meshes converted to the kernel's flash format
 //! ([`fixshade::mesh`]), from a [`MeshDesc`] (the generators of
-//! [`crate::generate`], an OBJ file through [`generate::read_obj`], a
+//! [`crate::generate`], an OBJ file through [`read_obj_file`], a
 //! scene's mesh), and written as Rust source (`static`s) or as the bytes
 //! that [`Mesh::from_bytes`] and [`include_mesh!`](fixshade::include_mesh)
 //! read. `src/bin/convert.rs` (`fixshade-convert`) is the command-line front end; the
@@ -43,8 +43,9 @@ use std::fmt::{self, Write as _};
 use std::string::String;
 use std::vec::Vec;
 
-use crate::generate::{self, ObjError};
+use crate::generate::ObjError;
 use crate::scene_desc::{MeshDesc, MAX_VERTICES};
+use crate::scene_file::read_obj_file;
 use fixshade::mesh::{
     vertex_normals, Bounds, Mesh, MeshError, PackedNormal, FLAG_NORMALS, MAGIC, VERSION,
 };
@@ -293,18 +294,19 @@ impl MeshData {
         Ok(data)
     }
 
-    /// Reads an OBJ file ([`generate::read_obj`]) and converts it.
+    /// Reads an OBJ file as a scene's `mesh.obj` is read
+    /// ([`read_obj_file`]: a regular file of at most
+    /// [`MAX_FILE_BYTES`](crate::scene_file::MAX_FILE_BYTES)) and converts it.
     ///
     /// ```
     /// use fixshade_host::mesh_convert::MeshData;
     /// let data = MeshData::from_obj_file("tests/data/tetrahedron.obj").unwrap();
     /// assert_eq!((data.positions.len(), data.indices.len()), (4, 4));
     /// assert!(MeshData::from_obj_file("tests/data/none.obj").is_err());
+    /// assert!(MeshData::from_obj_file("/dev/zero").is_err()); // not a regular file
     /// ```
     pub fn from_obj_file(path: impl AsRef<std::path::Path>) -> Result<MeshData, ObjFileError> {
-        let path = path.as_ref();
-        let desc = generate::read_obj(|| std::fs::File::open(path).map(std::io::BufReader::new))
-            .map_err(ObjFileError::Obj)?;
+        let desc = read_obj_file(path.as_ref()).map_err(ObjFileError::Obj)?;
         MeshData::from_desc(&desc).map_err(ObjFileError::Convert)
     }
 

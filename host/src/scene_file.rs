@@ -39,7 +39,7 @@ use serde::de::DeserializeOwned;
 use serde::Deserialize;
 use serde_json::{Map, Value};
 
-use crate::generate::{self, ObjError, MAX_PLANE_SEGMENTS, MAX_SEGMENTS};
+use crate::generate::{self, ObjError, ObjErrorKind, MAX_PLANE_SEGMENTS, MAX_SEGMENTS};
 use crate::scene_desc::{
     CameraDesc, LightDesc, MaterialDesc, MeshDesc, Projection, SceneDesc, SceneError, Shading,
     SpecularModel, Viewer, DEFAULT_ATTENUATION, IDENTITY, MAX_VERTICES, WHITE,
@@ -686,20 +686,46 @@ fn mesh(v: &Value, path: String, base_dir: &Path, arrays: &mut MeshArrays) -> Re
     }
 }
 
-/// Reads the OBJ file at `path`, a regular file of at most
-/// [`MAX_FILE_BYTES`] ([`generate::read_obj`] gives its memory bound).
+/// The OBJ file of `mesh.obj`, read by [`read_obj_file`]: a file that
+/// cannot be opened is [`SceneFileError::ObjRead`], one that fails later
+/// [`SceneFileError::Obj`] with its line.
 fn obj_file(path: &Path) -> Result<MeshDesc> {
-    let read_error = |e: std::io::Error| SceneFileError::ObjRead {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    // Opened once here for the error of a missing or irregular file, then
-    // once per pass of the reader.
-    open_regular(path).map_err(read_error)?;
-    generate::read_obj(|| open_regular(path)).map_err(|error| SceneFileError::Obj {
-        path: path.to_path_buf(),
-        error,
+    read_obj_file(path).map_err(|error| match error {
+        ObjError {
+            line: 0,
+            kind: ObjErrorKind::Read(message),
+        } => SceneFileError::ObjRead {
+            path: path.to_path_buf(),
+            message,
+        },
+        error => SceneFileError::Obj {
+            path: path.to_path_buf(),
+            error,
+        },
     })
+}
+
+/// Reads the OBJ file at `path` ([`generate::read_obj`], which gives its
+/// memory bound) as a scene's `mesh.obj` is read, and as the mesh
+/// converter reads its input: a regular file (a device, a FIFO or a folder
+/// is refused before it is opened) of at most [`MAX_FILE_BYTES`] (a larger
+/// file is refused while it is read). A file that cannot be opened, or is
+/// not a regular file, is an error of line 0 ([`ObjErrorKind::Read`], the
+/// operating system's message or `not a regular file`).
+///
+/// ```
+/// use std::path::Path;
+/// use fixshade_host::generate::ObjErrorKind;
+/// use fixshade_host::scene_file::read_obj_file;
+/// let m = read_obj_file(Path::new("tests/data/tetrahedron.obj")).unwrap();
+/// assert_eq!((m.positions.len(), m.indices.len()), (4, 4));
+/// let err = read_obj_file(Path::new("tests/data")).unwrap_err();
+/// assert_eq!(err.line, 0);
+/// assert_eq!(err.kind, ObjErrorKind::Read("not a regular file".into()));
+/// ```
+pub fn read_obj_file(path: &Path) -> std::result::Result<MeshDesc, ObjError> {
+    // Opened once per pass of the reader, each time checked again.
+    generate::read_obj(|| open_regular(path))
 }
 
 /// A segment count in `min..=max` (the generators would clamp anything

@@ -8,7 +8,12 @@
 //! ```
 //!
 //! * `INPUT`: an OBJ file, or a generator: `sphere:LON,LAT,RADIUS`,
-//!   `cube:SIZE`, `torus:R,r,U,V`, `plane:SIZE,SEGMENTS`.
+//!   `cube:SIZE`, `torus:R,r,U,V`, `plane:SIZE,SEGMENTS`. The OBJ file is
+//!   read as a scene's `mesh.obj` is (`scene_file`'s [`read_obj_file`]):
+//!   it must be a regular file (a device, a FIFO or a folder is refused
+//!   before it is opened: opening a FIFO blocks until a writer comes) of at
+//!   most 64 MiB (a larger one is refused while it is read), and its mesh
+//!   must have a triangle.
 //! * `OUTPUT`: the file written.
 //! * `--rust`: Rust source, `pub static NAME: fixshade::mesh::Mesh` over
 //!   `NAME_POSITIONS`, `NAME_NORMALS` and `NAME_INDICES`, for `mod` or
@@ -23,9 +28,12 @@
 //! * `-h`, `--help`: the usage, on stdout.
 //!
 //! It prints the box, the largest quantisation error per axis against the
-//! input and the sizes. Bad input prints what is wrong and the usage line
-//! on stderr and exits with code 2; failing to write the output exits with
-//! code 1.
+//! input and the sizes. A bad argument prints what is wrong and the usage
+//! line on stderr, a bad input what is wrong, naming the file; both exit
+//! with code 2. Failing to write the output prints what is wrong, naming
+//! the file, and exits with code 1. Each message is one line: what it
+//! echoes (paths, arguments, the file's text) has its control characters
+//! escaped (`scene_file`'s [`one_line`]).
 
 use std::io::Write as _;
 use std::path::Path;
@@ -34,6 +42,7 @@ use std::process::ExitCode;
 use fixshade_host::generate;
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::MeshDesc;
+use fixshade_host::scene_file::{one_line, read_obj_file};
 
 /// The usage line, printed after a bad argument.
 const USAGE: &str =
@@ -45,7 +54,8 @@ usage: fixshade-convert INPUT OUTPUT [--rust | --bytes] [--name NAME] [--derive-
 
 Converts a mesh to fixshade's flash format.
 
-  INPUT             an OBJ file, or a generated mesh: sphere:LON,LAT,RADIUS,
+  INPUT             an OBJ file (a regular file of at most 64 MiB, with at
+                    least one face), or a generated mesh: sphere:LON,LAT,RADIUS,
                     cube:SIZE, torus:R,r,U,V or plane:SIZE,SEGMENTS
   OUTPUT            the file to write
   --rust            Rust source: `pub static NAME: Mesh` over NAME_POSITIONS,
@@ -103,8 +113,7 @@ fn input(arg: &str) -> Result<MeshDesc, String> {
             let v = numbers(spec, 2)?;
             generate::plane(v[0], count(v[1]))
         }
-        _ => generate::read_obj(|| std::fs::File::open(arg).map(std::io::BufReader::new))
-            .map_err(|e| format!("{arg}: {e}"))?,
+        _ => read_obj_file(Path::new(arg)).map_err(|e| format!("{arg}: {e}"))?,
     })
 }
 
@@ -179,16 +188,43 @@ fn parse(args: &[String]) -> Result<Option<Args>, String> {
     }))
 }
 
-fn run() -> Result<(), (u8, String)> {
+/// Why the command failed.
+struct Failure {
+    /// The exit code: 2 for bad input, 1 for an output not written.
+    code: u8,
+    /// What is wrong, unescaped: [`main`] escapes it to one line.
+    message: String,
+    /// Whether the usage line follows (after a bad argument).
+    usage: bool,
+}
+
+fn run() -> Result<(), Failure> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let bad = |m: String| (2, format!("{m}\n{USAGE}"));
-    let Some(a) = parse(&args).map_err(bad)? else {
+    let Some(a) = parse(&args).map_err(|message| Failure {
+        code: 2,
+        message,
+        usage: true,
+    })?
+    else {
         // Not `println!`, which panics when `--help | head` closes the pipe.
         let _ = writeln!(std::io::stdout(), "{HELP}");
         return Ok(());
     };
-    let bad = |m: String| (2, m);
+    let bad = |message: String| Failure {
+        code: 2,
+        message,
+        usage: false,
+    };
     let desc = input(&a.input).map_err(bad)?;
+    // A mesh without a triangle would draw nothing: an OBJ file without a
+    // face (empty, or comments only) is a mistake, not a mesh. The
+    // generators always make triangles.
+    if desc.indices.is_empty() {
+        return Err(bad(format!(
+            "{}: no triangle to convert (an OBJ mesh needs an `f` line)",
+            a.input
+        )));
+    }
     let mut data = MeshData::from_desc(&desc).map_err(|e| bad(format!("{}: {e}", a.input)))?;
     if a.derive {
         data.derive_normals()
@@ -205,7 +241,11 @@ fn run() -> Result<(), (u8, String)> {
         }
         Format::Bytes => data.to_bytes(),
     };
-    std::fs::write(out_path, &bytes).map_err(|e| (1, format!("{}: {e}", a.output)))?;
+    std::fs::write(out_path, &bytes).map_err(|e| Failure {
+        code: 1,
+        message: format!("{}: {e}", a.output),
+        usage: false,
+    })?;
 
     let back = data.to_desc();
     let mut err = [0.0f64; 3];
@@ -237,7 +277,7 @@ fn run() -> Result<(), (u8, String)> {
     let _ = writeln!(
         stdout,
         "{}: {} ({} bytes; {} as the byte layout, what flash holds)",
-        a.output,
+        one_line(&a.output),
         match a.format {
             Format::Rust => "Rust source",
             Format::Bytes => "mesh bytes",
@@ -251,9 +291,12 @@ fn run() -> Result<(), (u8, String)> {
 fn main() -> ExitCode {
     match run() {
         Ok(()) => ExitCode::SUCCESS,
-        Err((code, message)) => {
-            eprintln!("fixshade-convert: {message}");
-            ExitCode::from(code)
+        Err(f) => {
+            eprintln!("fixshade-convert: {}", one_line(&f.message));
+            if f.usage {
+                eprintln!("{USAGE}");
+            }
+            ExitCode::from(f.code)
         }
     }
 }

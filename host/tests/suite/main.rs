@@ -7,6 +7,7 @@ mod heap;
 
 mod bad_input;
 mod bands;
+mod convert_command;
 mod fuzz_regressions;
 mod kernel_vs_reference;
 mod lighting_vs_reference;

@@ -368,7 +368,7 @@ fn checked_in_files_are_the_converters_output() {
     assert_eq!(
         data.to_rust("tetrahedron"),
         include_str!("../data/tetrahedron.rs"),
-        "regenerate: cargo run --example convert_mesh -- tests/data/tetrahedron.obj tests/data/tetrahedron.rs"
+        "regenerate: cargo run -p fixshade-host --bin fixshade-convert -- host/tests/data/tetrahedron.obj host/tests/data/tetrahedron.rs"
     );
     assert_eq!(TETRAHEDRON, data.mesh());
     assert_eq!(TETRAHEDRON_POSITIONS.len(), 4);
@@ -376,7 +376,7 @@ fn checked_in_files_are_the_converters_output() {
     assert_eq!(
         data.to_bytes(),
         include_bytes!("../../../tests/data/tetrahedron.fxm"),
-        "regenerate: cargo run --example convert_mesh -- tests/data/tetrahedron.obj tests/data/tetrahedron.fxm"
+        "regenerate: cargo run -p fixshade-host --bin fixshade-convert -- host/tests/data/tetrahedron.obj tests/data/tetrahedron.fxm"
     );
     let included = include_mesh!("../../../tests/data/tetrahedron.fxm").expect("valid");
     assert_eq!(included, TETRAHEDRON);

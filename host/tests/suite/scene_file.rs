@@ -375,6 +375,43 @@ fn rejects_non_finite_numbers() {
     );
 }
 
+/// A number is at most 4096 characters long and a string 4096 bytes,
+/// anywhere in the file (the mesh's arrays too): a bound on the work a
+/// token takes, as SCENE_FORMAT.md's limits say. A number of exactly 4096
+/// characters is read.
+#[test]
+fn tokens_are_at_most_4096_characters() {
+    let zero = |len: usize| format!("0.{}", "0".repeat(len - 2));
+    let scene = parse(&BASE.replace("\"far\": 10", &format!("\"far\": 1{}", zero(4095))))
+        .expect("a number of 4096 characters is read");
+    assert_eq!(scene.camera.far, 10.0);
+    let at = parse(&BASE.replace(
+        "[1, 0, 0], [0, 1, 0]]",
+        &format!("[1, 0, 0], [0, {}, 0]]", zero(4096)),
+    ));
+    assert!(at.is_ok(), "{:?}", at.err());
+    for len in [4097, 1_000_000] {
+        rejects(
+            &BASE.replace("\"far\": 10", &format!("\"far\": {}", zero(len))),
+            "not valid JSON: number longer than 4096 characters at line 5",
+            "",
+        );
+        rejects(
+            &BASE.replace(
+                "[1, 0, 0], [0, 1, 0]]",
+                &format!("[1, 0, 0], [0, {}, 0]]", zero(len)),
+            ),
+            "not valid JSON: number longer than 4096 characters at line 6",
+            "",
+        );
+    }
+    rejects(
+        &BASE.replace("\"directional\"", &format!("\"{}\"", "d".repeat(4097))),
+        "not valid JSON: string longer than 4096 bytes",
+        "",
+    );
+}
+
 #[test]
 fn rejects_out_of_range_values() {
     rejects(
@@ -484,8 +521,9 @@ fn obj_resolves_against_the_scene_file() {
 
 use crate::heap;
 
-/// A scratch folder for this test binary's files.
-fn scratch(name: &str) -> PathBuf {
+/// A scratch folder for this test binary's files (the converter's tests
+/// use it too).
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("fixshade-hostile-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
