@@ -7,9 +7,9 @@
 //! `target_feature` for this, so the target's name decides, as
 //! `cortex-m`'s build script does for `armv6m`.
 //!
-//! Sets `fixshade_soft_div64` for targets whose pointers are narrower than
-//! 64 bits, where a 64-bit division is a library call: there
-//! [`division`]'s shared-divisor floors and reciprocals go without one.
+//! Sets `fixshade_soft_div32` for ARMv6-M, which has no divide
+//! instruction: there [`division`]'s shared-divisor floors take a
+//! reciprocal instead of a library call.
 //!
 //! The kernel reads both only through [`platform`].
 //!
@@ -18,15 +18,14 @@
 //! [`platform`]: src/platform.rs
 fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
-    println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div64)");
+    println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div32)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_explicit_draw)");
     println!("cargo:rerun-if-changed=build.rs");
     let target = std::env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
         println!("cargo:rustc-cfg=fixshade_soft_mul64");
     }
-    let width = std::env::var("CARGO_CFG_TARGET_POINTER_WIDTH").unwrap_or_default();
-    if width != "64" {
-        println!("cargo:rustc-cfg=fixshade_soft_div64");
+    if target.starts_with("thumbv6m") {
+        println!("cargo:rustc-cfg=fixshade_soft_div32");
     }
 }

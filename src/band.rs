@@ -11,11 +11,11 @@
 //! display.
 //!
 //! # Identical pixels
-//! The viewport (projection, window mapping) and its tiles (the guard
-//! band's centres, where the attribute planes are anchored) are the whole
-//! target's for every band; only the rows drawn change. A triangle is set
-//! up again in each band it meets, with integer edges and planes that give
-//! each row the same span as the whole-frame walk (`src/setup.rs`); the
+//! The viewport (projection, window mapping, the set-up's origin) is the
+//! whole target's for every band; only the rows drawn change. A triangle
+//! is set up again in each band it meets, with integer edges and planes
+//! that give each row the same span and values as the whole-frame walk
+//! (`src/walk.rs`); the
 //! triangles of a band are drawn in mesh order, and each pixel is drawn by
 //! exactly one band: the frame is bit for bit the whole-frame render
 //! (`host/tests/suite/bands.rs` checks it on the standard scenes).
@@ -59,13 +59,12 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::Mesh;
-
-use crate::rasterizer::{area2, RasterVertex};
-use crate::render::{
-    check_bounds, CachedVertex, DrawStats, Frame, Prepared, RenderError, ShadingKind, ShadingMode,
-};
-use crate::span::BandSink;
-use crate::vertex::Corners;
+use crate::options::{check_bounds, DrawStats, RenderError, ShadingKind, ShadingMode};
+use crate::render::Prepared;
+use crate::shade::{Corners, Frame};
+use crate::span::Memory;
+use crate::vertex::CachedVertex;
+pub use crate::vertex::{Cached, Recomputed, VertexMode};
 
 /// How many runs of consecutive triangles a frame is split into for
 /// finding each band's triangles (a table of `CHUNKS × 12` bytes on the
@@ -77,68 +76,6 @@ use crate::vertex::Corners;
 /// assert_eq!(CHUNKS * (2 * 4 + 4), 1536);
 /// ```
 pub const CHUNKS: usize = 128;
-
-/// Where a draw's per-vertex work is kept: [`Cached`]
-/// ([`Shaded::with_cache`](crate::Shaded::with_cache)) or [`Recomputed`]
-/// (the default).
-///
-/// ```
-/// use fixshade::band::{Cached, Recomputed, VertexMode};
-/// use fixshade::render::CachedVertex;
-/// fn cached<X: VertexMode>(_: &X) -> bool {
-///     X::CACHED
-/// }
-/// let mut storage = [CachedVertex::default(); 3];
-/// let mut mode = Cached(&mut storage);
-/// assert!(cached(&mode) && mode.cache().len() == 3);
-/// assert!(!cached(&Recomputed) && Recomputed.cache().is_empty());
-/// ```
-pub trait VertexMode {
-    /// Whether the vertices are cached.
-    const CACHED: bool;
-    /// The cache (empty for [`Recomputed`]).
-    fn cache(&mut self) -> &mut [CachedVertex];
-}
-
-/// Vertices transformed, projected and lit once per frame, in caller
-/// storage of one [`CachedVertex`] per mesh vertex.
-///
-/// ```
-/// use fixshade::band::{Cached, VertexMode};
-/// use fixshade::render::CachedVertex;
-/// let mut storage = [CachedVertex::default(); 4];
-/// let mut mode = Cached(&mut storage);
-/// assert_eq!(mode.cache().len(), 4);
-/// ```
-#[derive(Debug)]
-pub struct Cached<'c>(pub &'c mut [CachedVertex]);
-
-impl VertexMode for Cached<'_> {
-    const CACHED: bool = true;
-    #[inline(always)]
-    fn cache(&mut self) -> &mut [CachedVertex] {
-        self.0
-    }
-}
-
-/// No per-vertex storage: each triangle's vertices are transformed,
-/// projected and lit again for each triangle (and in every band) that
-/// draws them.
-///
-/// ```
-/// use fixshade::band::{Recomputed, VertexMode};
-/// assert!(Recomputed.cache().is_empty());
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Recomputed;
-
-impl VertexMode for Recomputed {
-    const CACHED: bool = false;
-    #[inline(always)]
-    fn cache(&mut self) -> &mut [CachedVertex] {
-        &mut []
-    }
-}
 
 /// A depth test the band renderer can move down the frame: [`NoDepth`] or
 /// [`DepthBand`].
@@ -258,8 +195,8 @@ impl<'t, 'b, T> Bands<'t, 'b, T> {
     }
 }
 
-/// The rows `[lo, hi]` of a triangle's pixel centres (from its window
-/// `y`s, 1/16 pixel).
+/// The rows `[lo, hi]` (from the set-up's origin) of a triangle's pixel
+/// centres, from its window `y`s (1/16 pixel).
 #[inline(always)]
 fn rows_of(y: [i32; 3]) -> (i32, i32) {
     let miny = y[0].min(y[1]).min(y[2]);
@@ -267,36 +204,30 @@ fn rows_of(y: [i32; 3]) -> (i32, i32) {
     ((miny + 7) >> 4, (maxy - 8) >> 4)
 }
 
-/// The rows a triangle may draw in the viewport, or `None` when it draws
-/// nothing (behind the near plane, no area, culled, or no pixel centre in
-/// the viewport). A triangle crossing the near plane may draw any row. A
-/// sliver that snapping turned over is kept here and dropped when a band
-/// draws it (`Frame::triangle` decides that for the whole frame and the
-/// bands alike): this pass only spares work.
+/// The rows a triangle may draw (from the set-up's origin), or `None` when
+/// it draws nothing (no area, culled, or no pixel centre in the target). A
+/// triangle with a vertex for the rare path may draw any row. A sliver
+/// that snapping turned over is kept here and dropped when a band draws it
+/// (`src/triangle.rs` decides that for the whole frame and the bands
+/// alike): this pass only spares work.
 #[inline(always)]
 fn visible_rows<S: Specular, V: Viewer, L: LightSet>(
     f: &Frame<'_, '_, S, V, L>,
-    c: &Corners,
+    v: [CachedVertex; 3],
     cull: bool,
 ) -> Option<(i32, i32)> {
-    let inside = [c.inside(0), c.inside(1), c.inside(2)];
-    let vp = f.viewport;
-    if !(inside[0] && inside[1] && inside[2]) {
-        return (inside[0] || inside[1] || inside[2]).then_some((vp.y0, vp.y1));
-    }
-    let w = c.wins(f);
-    let a = area2(&w.map(|v| RasterVertex::<0> {
-        x: v[0].into(),
-        y: v[1].into(),
-        attr: [],
-    }));
-    if a == 0 || (a > 0 && cull) {
+    let r = &f.rect;
+    let [Some(a), Some(b), Some(c)] = v.map(|v| v.window()) else {
+        return Some((r.r0, r.r1));
+    };
+    let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    if area == 0 || (area > 0 && cull) {
         return None;
     }
-    let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);
-    let (xlo, xhi) = rows_of([w[0][0], w[1][0], w[2][0]]);
-    let (lo, hi) = (lo.max(vp.y0), hi.min(vp.y1));
-    if lo > hi || xlo > vp.x1 || xhi < vp.x0 {
+    let (lo, hi) = rows_of([a[1], b[1], c[1]]);
+    let (xlo, xhi) = rows_of([a[0], b[0], c[0]]);
+    let (lo, hi) = (lo.max(r.r0), hi.min(r.r1));
+    if lo > hi || xlo > r.c1 || xhi < r.c0 {
         return None;
     }
     Some((lo, hi))
@@ -365,14 +296,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
-        let modelview = self.mesh_modelview(mesh);
-        let Some(mut frame) = self.frame(mesh, &modelview, size)? else {
+        let Some(mut frame) = self.frame(mesh, size)? else {
             return Ok(stats);
         };
         let cull = self.options().cull;
         let cache = &mut vertices.cache()[..if X::CACHED { n } else { 0 }];
         if X::CACHED {
-            frame.project_all(cache);
+            frame.stage.project_all(cache);
         }
         let runs = Runs::new(mesh.indices.len());
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
@@ -380,13 +310,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
         let mut visible = [0u32; CHUNKS];
         for (t, tri) in mesh.indices.iter().enumerate() {
             let idx = tri.map(|i| i as usize);
-            let rows = if X::CACHED {
-                visible_rows(&frame, &Corners::of(cache, idx), cull)
+            let v = if X::CACHED {
+                idx.map(|i| cache.get(i).copied().unwrap_or_default())
             } else {
-                let mut three = frame.project3(idx);
-                visible_rows(&frame, &Corners::of_three(&mut three, idx), cull)
+                idx.map(|i| frame.stage.project(i))
             };
-            if let Some((lo, hi)) = rows {
+            if let Some((lo, hi)) = visible_rows(&frame, v, cull) {
                 let (r, j) = (t / runs.per, t % runs.per);
                 let b = &mut bounds[r];
                 *b = (b.0.min(lo), b.1.max(hi));
@@ -444,6 +373,8 @@ impl Job<'_, '_> {
         let bb = self.bb;
         let (w, height) = (bb.size.width, bb.size.height);
         let (indices, per) = (self.mesh.indices, self.runs.per);
+        let whole = frame.rect;
+        let oy = frame.origin.1;
         // Bands to skip before this worker's next one (none ever for a
         // worker at or past `workers`: at most 2^20 bands).
         let mut skip = if bands.worker < bands.workers {
@@ -461,8 +392,10 @@ impl Job<'_, '_> {
                 y0 += rows;
                 continue;
             }
-            let (b0, b1) = (y0 as i32, (y0 + rows - 1) as i32);
-            frame.rows = (b0, b1);
+            // The band's rows from the set-up's origin.
+            let (b0, b1) = (y0 as i32 - oy, (y0 + rows - 1) as i32 - oy);
+            frame.rect.r0 = b0;
+            frame.rect.r1 = b1;
             // w, rows ≤ 2^20 (check_size): below 2^40, in u64.
             let npx = (w as u64 * rows as u64) as usize;
             let raw_bg = RawU16::from(bands.background).into_inner();
@@ -470,43 +403,45 @@ impl Job<'_, '_> {
             if !depth.start_band(w, y0, rows) {
                 return Err(RenderError::DepthTooSmall);
             }
-            let mut sink = BandSink {
-                buf: &mut bands.colour[..npx],
-                width: w,
-                y0: b0,
-            };
-            frame.each_tile(|frame| {
-                for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
-                    if hi < b0 || lo > b1 {
-                        continue;
-                    }
-                    let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
-                    // The run's first 32 triangles by their set visibility
-                    // bits, the rest (a run longer than 32) all.
-                    let mut bits = self.visible[r];
-                    let first = core::iter::from_fn(move || {
-                        let j = bits.trailing_zeros() as usize;
-                        bits &= bits.wrapping_sub(1);
-                        (j < 32).then_some(j)
-                    });
-                    for j in first.chain(32..end - start) {
-                        let tri = indices[start + j];
-                        let idx = tri.map(|i| i as usize);
-                        let res = if !X::CACHED {
-                            band_triangle_recomputed::<M, _, _, _, _, _>(
-                                frame, idx, &mut sink, depth, stats,
-                            )
-                        } else {
-                            band_triangle_cached::<M, _, _, _, _, _>(
-                                frame, cache, idx, &mut sink, depth, stats,
-                            )
-                        };
-                        res.map_err(RenderError::lift)?;
-                    }
+            let mut out = Memory::new(&mut bands.colour[..npx], w, y0, frame.origin);
+            for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
+                if hi < b0 || lo > b1 {
+                    continue;
                 }
-                Ok(())
-            })?;
-            let area = Rectangle::new(bb.top_left + Point::new(0, b0), Size::new(w, rows));
+                let (start, end) = (r * per, ((r + 1) * per).min(indices.len()));
+                // The run's first 32 triangles by their set visibility
+                // bits, the rest (a run longer than 32) all.
+                let mut bits = self.visible[r];
+                let first = core::iter::from_fn(move || {
+                    let j = bits.trailing_zeros() as usize;
+                    bits &= bits.wrapping_sub(1);
+                    (j < 32).then_some(j)
+                });
+                for j in first.chain(32..end.saturating_sub(start)) {
+                    let Some(tri) = indices.get(start + j) else {
+                        continue;
+                    };
+                    let idx = tri.map(|i| i as usize);
+                    let res = if X::CACHED {
+                        band_triangle::<M, _, _, _, _>(
+                            frame, cache, idx, idx, &mut out, depth, stats,
+                        )
+                    } else {
+                        let mut three = idx.map(|i| frame.stage.project(i));
+                        band_triangle::<M, _, _, _, _>(
+                            frame,
+                            &mut three,
+                            [0, 1, 2],
+                            idx,
+                            &mut out,
+                            depth,
+                            stats,
+                        )
+                    };
+                    let Ok(()) = res;
+                }
+            }
+            let area = Rectangle::new(bb.top_left + Point::new(0, y0 as i32), Size::new(w, rows));
             bands
                 .target
                 .fill_contiguous(
@@ -518,6 +453,7 @@ impl Job<'_, '_> {
                 .map_err(RenderError::Target)?;
             y0 += rows;
         }
+        frame.rect = whole;
         Ok(())
     }
 }
@@ -536,64 +472,37 @@ impl Runs {
     }
 }
 
-/// Draws triangle `idx` in the current band from the frame's cache, after
-/// rejecting it by its rows.
+/// Draws triangle `vertex` (its corners at `slot` in `cache`) in the
+/// current band, after rejecting it by its rows.
 #[inline(always)]
-fn band_triangle_cached<M, P, D, S, V, L>(
+#[allow(clippy::too_many_arguments)]
+fn band_triangle<M, D, S, V, L>(
     f: &Frame<'_, '_, S, V, L>,
     cache: &mut [CachedVertex],
-    idx: [usize; 3],
-    sink: &mut P,
+    slot: [usize; 3],
+    vertex: [usize; 3],
+    out: &mut Memory,
     depth: &mut D,
     stats: &mut DrawStats,
-) -> Result<(), RenderError<P::Error>>
+) -> Result<(), core::convert::Infallible>
 where
     M: ShadingMode,
-    P: crate::span::PixelSink,
     D: DepthTest,
     S: Specular,
     V: Viewer,
     L: LightSet,
 {
-    // Rows first, where all three corners are in front of the near plane
-    // with their positions kept (a vertex behind it has no window
-    // position; a far one is left to the triangle's own tests).
-    let y = idx.map(|i| cache[i].near_y());
-    if let [Some(a), Some(b), Some(c)] = y {
-        let (lo, hi) = rows_of([a, b, c]);
-        if hi < f.rows.0 || lo > f.rows.1 {
+    let w = slot.map(|s| cache.get(s).and_then(|v| v.window()));
+    if let [Some(a), Some(b), Some(c)] = w {
+        let (lo, hi) = rows_of([a[1], b[1], c[1]]);
+        if hi < f.rect.r0 || lo > f.rect.r1 {
             return Ok(());
         }
     }
-    f.triangle::<M, P, D>(&mut Corners::of(cache, idx), sink, depth, stats)
-}
-
-/// Projects triangle `idx`'s vertices, rejects it by its rows, and draws it
-/// in the current band.
-#[inline(always)]
-fn band_triangle_recomputed<M, P, D, S, V, L>(
-    f: &Frame<'_, '_, S, V, L>,
-    idx: [usize; 3],
-    sink: &mut P,
-    depth: &mut D,
-    stats: &mut DrawStats,
-) -> Result<(), RenderError<P::Error>>
-where
-    M: ShadingMode,
-    P: crate::span::PixelSink,
-    D: DepthTest,
-    S: Specular,
-    V: Viewer,
-    L: LightSet,
-{
-    let mut three = f.project3(idx);
-    let mut c = Corners::of_three(&mut three, idx);
-    if c.inside(0) && c.inside(1) && c.inside(2) {
-        let w = c.wins(f);
-        let (lo, hi) = rows_of([w[0][1], w[1][1], w[2][1]]);
-        if hi < f.rows.0 || lo > f.rows.1 {
-            return Ok(());
-        }
-    }
-    f.triangle::<M, P, D>(&mut c, sink, depth, stats)
+    let mut c = Corners {
+        cache,
+        slot,
+        vertex,
+    };
+    f.triangle::<M, _, D>(&mut c, out, depth, stats)
 }

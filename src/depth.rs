@@ -285,39 +285,25 @@ mod tests {
     /// drawn over a nearer one.
     #[test]
     fn no_depth_draws_later_over_earlier() {
-        use crate::framebuffer::Framebuffer;
-        use crate::span::{emit, FlatShader, FramebufferSink, SpanDepth};
+        use crate::span::{Flat, Memory, Out};
+        use crate::walk::Span;
         assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
         let mut px = [0u16; 4];
-        let mut fb = Framebuffer::new(&mut px, 4, 1).unwrap();
-        let near = SpanDepth {
-            z: 0,
-            dz: 0,
-            inside: true,
-        };
-        let far = SpanDepth {
-            z: 1 << 24,
-            dz: 0,
-            inside: false,
-        };
-        for (c, z) in [(1, near), (2, far)] {
-            let sh = FlatShader {
+        let mut out = Memory::new(&mut px, 4, 0, (0, 0));
+        for (c, z) in [(1, 0), (2, 1 << 28)] {
+            let sh = Flat {
                 plain: c,
                 shade: Default::default(),
                 dither: false,
-                x: 0,
-                y: 0,
             };
-            emit(
-                &mut FramebufferSink { fb: &mut fb },
-                &mut NoDepth,
-                0,
-                0,
-                4,
-                z,
-                sh,
-            )
-            .unwrap();
+            let span = Span {
+                y: 0,
+                x0: 0,
+                n: 4,
+                start: [z],
+                step: &[0],
+            };
+            out.span(&mut NoDepth, &span, &sh).unwrap();
         }
         assert_eq!(px, [2; 4]); // the later, farther span is drawn over the nearer
     }

@@ -124,6 +124,12 @@ impl<'a> Framebuffer<'a> {
         self.buf.get_mut(start..start + n)
     }
 
+    /// The pixels and the row length, for the renderer's spans.
+    #[inline(always)]
+    pub(crate) fn parts(&mut self) -> (&mut [u16], u32) {
+        (self.buf, self.width)
+    }
+
     /// The part of `area` inside the buffer, as (x0, y0, width, height).
     /// In `i64`: an area may reach past `i32::MAX` (its corner plus its
     /// size), where `embedded-graphics`' own rectangle arithmetic overflows.
@@ -316,7 +322,7 @@ impl<'a> Framebuffer<'a> {
 #[cfg(test)]
 mod tests {
     use super::Framebuffer;
-    use crate::rasterizer::tests::xorshift;
+    use crate::tests::xorshift;
     use embedded_graphics::draw_target::DrawTarget;
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::Rgb565;

@@ -62,7 +62,7 @@
 //! | module | what | items |
 //! | --- | --- | --- |
 //! | [`renderer`] | the draw call | [`FrameDepth`](renderer::FrameDepth), [`Output`](renderer::Output), [`Renderer`](renderer::Renderer), [`Shaded`](renderer::Shaded) |
-//! | [`render`] | shading modes, options, errors | [`CachedVertex`](render::CachedVertex), [`DrawStats`](render::DrawStats), [`Flat`](render::Flat), [`Gouraud`](render::Gouraud), [`PhongShading`](render::PhongShading), [`RenderError`](render::RenderError), [`RenderOptions`](render::RenderOptions), [`ShadingKind`](render::ShadingKind), [`ShadingMode`](render::ShadingMode), [`MAX_TARGET_SIDE`](render::MAX_TARGET_SIDE), [`PAIR_SPAN`](render::PAIR_SPAN) |
+//! | [`render`] | shading modes, options, errors | [`CachedVertex`](render::CachedVertex), [`DrawStats`](render::DrawStats), [`Flat`](render::Flat), [`Gouraud`](render::Gouraud), [`PhongShading`](render::PhongShading), [`RenderError`](render::RenderError), [`RenderOptions`](render::RenderOptions), [`ShadingKind`](render::ShadingKind), [`ShadingMode`](render::ShadingMode), [`MAX_TARGET_SIDE`](render::MAX_TARGET_SIDE) |
 //! | [`mesh`] | the mesh in flash | [`Aligned`](mesh::Aligned), [`Bounds`](mesh::Bounds), [`Mesh`](mesh::Mesh), [`MeshError`](mesh::MeshError), [`PackedNormal`](mesh::PackedNormal), [`FLAG_NORMALS`](mesh::FLAG_NORMALS), [`HEADER_LEN`](mesh::HEADER_LEN), [`MAGIC`](mesh::MAGIC), [`VERSION`](mesh::VERSION), [`face_normal`](mesh::face_normal), [`vertex_normals`](mesh::vertex_normals) |
 //! | [`camera`] | view and projection | [`Camera`](camera::Camera), [`CameraError`](camera::CameraError), [`Projection`](camera::Projection), [`ProjectionCoeffs`](camera::ProjectionCoeffs) |
 //! | [`material`] | surfaces | [`BlinnPhong`](material::BlinnPhong), [`Material`](material::Material), [`NoSpecular`](material::NoSpecular), [`Phong`](material::Phong), [`Specular`](material::Specular) |
@@ -87,6 +87,7 @@
 
 pub mod band;
 pub mod camera;
+mod clip;
 pub mod color;
 pub mod depth;
 // The draw call's last step; public, as the firmware's baseline, only
@@ -103,15 +104,18 @@ pub mod material;
 pub mod mesh;
 mod normalize;
 pub mod num;
+mod options;
 mod platform;
-mod rasterizer;
 pub mod render;
 pub mod renderer;
 mod setup;
+mod shade;
 mod span;
 mod specular_table;
+mod triangle;
 pub mod vector;
 mod vertex;
+mod walk;
 
 #[cfg(test)]
 mod tests;

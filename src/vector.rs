@@ -840,7 +840,7 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rasterizer::tests::xorshift;
+    use crate::tests::xorshift;
 
     /// `transform_point`'s row by exact `i128` sums, and by the four terms
     /// summed saturating one by one (its earlier form).

@@ -1,65 +1,368 @@
 //! The vertex stage: each mesh vertex's window position, depth and lit
 //! colour, in a 16-byte [`CachedVertex`] per vertex.
 //!
-//! Once a frame ([`Frame::project_all`]) a vertex's window position comes
-//! from its `i16` mesh position through the projection's rows folded with
-//! the viewport, the model-view matrix and the mesh's box ([`Fold`]),
-//! divided by its `w_c` with one reciprocal, and snapped to 1/16 pixel;
-//! its eye-space depth decides the near test as the clipping does. It is
-//! lit the first time a visible triangle needs its colour. Everything else a triangle may need of a vertex (its
-//! eye position and normal for flat and Phong shading and for lighting,
-//! its clip coordinates where a triangle crosses the near plane or the
-//! guard band, its window position when a coordinate lies outside
-//! [−2 048, 2 048) pixels of the target's top-left corner) is
-//! computed again from the mesh: the same functions of the same inputs,
-//! so the same values, and no bytes kept for the rare paths.
+//! # Rows
+//! Once a draw, the projection, the view and model matrices, the mesh's
+//! box and the viewport are folded into four rows ([`Rows`]): functions
+//! `V(q) = Σ g[c]·q[c] + t` of a vertex's `i16` mesh position `q`, exact
+//! in integers, whose true values are `V·2^e`, one exponent a row. They
+//! are the vertex's homogeneous window coordinates: `X`, `Y` (the window
+//! position relative to the set-up's origin, a pixel corner at the
+//! viewport's centre, times `w_c`), `Z` (the depth attribute times `w_c`)
+//! and `W` (`w_c`), so that the window position is `X/W` and the depth
+//! attribute `Z/W`. No absolute size is part of them: each row keeps 28
+//! bits of its largest coefficient.
 //!
-//! The whole frame, the band renderer's cached mode and its recomputed
-//! mode (three cache entries per triangle, on the stack) share this store
-//! and its [`Corners`], so cull, box and facing are decided on the same
-//! values everywhere.
+//! # Per vertex
+//! Where the rows allow it ([`Rows::fast`]: `X` and `Y` at `W`'s exponent
+//! plus 16, `Z` at plus 25), a vertex takes `⌊V/2¹⁴⌋` of each row in
+//! 32-bit pieces, one reciprocal of its `W` ([`recip63`]) and three
+//! products: the snapped position `round(x₁₄·2¹⁶/w₁₄)` exactly (a
+//! quotient the reciprocal leaves within a 2⁻¹⁶ of a rounding's half is
+//! divided exactly), and the depth attribute. A draw whose mesh box lies
+//! in front of the near plane and inside the guard band ([`Rows::contained`],
+//! decided from the box's eight corners) tests nothing per vertex;
+//! otherwise a vertex behind the near plane, outside the guard band,
+//! past `z_w = 2` or too close to the eye for 32-bit precision is marked
+//! for the rare path (`src/clip.rs`), which works from the exact rows.
+//!
+//! The colour is lit the first time a drawn triangle needs it.
 
 use crate::camera::ProjectionCoeffs;
 use crate::color::Shade;
-use crate::illumination::Viewer;
+use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::Specular;
+use crate::mesh::Mesh;
 use crate::normalize::normalize;
-use crate::num::widening::{mul_by_narrow, mul_i32_i16};
-use crate::rasterizer::{Recip, COORD_LIMIT, QUOT_SAT};
-use crate::render::{DrawStats, Frame};
-use crate::vector::Mat4;
-use crate::vector::{Unit3, Vec3};
+use crate::num::division::{floor_div, recip63};
+use crate::num::widening::{mul_i32_i16, mul_i32_u32};
+use crate::num::Wide;
+use crate::options::DrawStats;
+use crate::platform;
+use crate::vector::{normal_matrix, Mat4, Unit3, Vec3};
 
-/// A window position and depth attribute ([`Frame::window`]): `x`, `y` in
-/// 1/16 pixel within ±2²⁸, the depth within ±2³⁰, so every coordinate and
-/// its difference from a tile's centre (below 2²⁵) fits `i32`.
-pub(crate) type Win = [i32; 3];
+/// How far a window coordinate the lean set-up takes may lie from the
+/// set-up's origin, in 1/16 pixel on each axis (±1 023 pixels): then every
+/// difference of two coordinates is below 2¹⁵ and every doubled area
+/// below 2³¹.
+pub(crate) const GUARD: i32 = (1 << 14) - 16;
+
+/// The depth attribute's scale: `z_w·DEPTH_K·2 + 2⁷`, whose `>> 8` is
+/// SPEC.md 5's `d = round(z_w·65535)`.
+const DEPTH_K: i64 = 65535 << 7;
+
+/// `Z/W` in the fast rows is the depth attribute times 2⁻²⁵: below 1 up to
+/// `z_w = 2`.
+const Z_SHIFT: i32 = 25;
+
+/// `X/W` in the fast rows is the window position (1/16 pixel) times 2⁻¹⁶.
+const XY_SHIFT: i32 = 16;
+
+/// One row: `V(q) = Σ g[c]·q[c] + t`, true value `V·2^e`, with `|g| ≤
+/// 2²⁸` and `|t| ≤ 2⁴³`, so `|V| < 2⁴⁵`. Kept also split at bit 14 for
+/// [`Row::fourteen`].
+#[derive(Clone, Copy, Debug)]
+struct Row {
+    g: [i32; 3],
+    t: i64,
+    e: i32,
+    /// `g >> 14` and `t >> 14`.
+    gh: [i32; 3],
+    th: i32,
+    /// `g & 0x3FFF` and `t & 0x3FFF`.
+    gl: [i32; 3],
+    tl: i32,
+}
+
+impl Row {
+    /// The row of coefficients `c` and constant `k` at exponent `e`.
+    fn at(c: [Wide; 3], k: Wide, e: i32) -> Row {
+        let g = c.map(|w| w.at(e) as i32);
+        let t = k.at(e);
+        Row {
+            g,
+            t,
+            e,
+            gh: g.map(|g| g >> 14),
+            th: (t >> 14) as i32,
+            gl: g.map(|g| g & 0x3FFF),
+            tl: (t & 0x3FFF) as i32,
+        }
+    }
+
+    /// The least exponent at which `c` and `k` keep the row's bounds.
+    fn exponent(c: [Wide; 3], k: Wide) -> i32 {
+        let b = c.iter().map(|w| w.bits() - 28).max().unwrap_or(0);
+        b.max(k.bits() - 43)
+    }
+
+    /// `V(q)`, exactly: each product below 2⁴³.
+    #[inline(always)]
+    fn exact(&self, q: [i16; 3]) -> i64 {
+        let g = &self.g;
+        mul_i32_i16(g[0], q[0]) + mul_i32_i16(g[1], q[1]) + mul_i32_i16(g[2], q[2]) + self.t
+    }
+
+    /// `⌊V(q)/2¹⁴⌋`, below 2³¹ in magnitude. Where a 64-bit product is a
+    /// library call, from 32-bit pieces: `V = 2¹⁴·(Σ gₕq + tₕ) + (Σ gₗq +
+    /// tₗ)`, with `|gₕ·q| ≤ 2²⁹`, `|tₕ| ≤ 2²⁹` (the high sum at most 2³¹ −
+    /// 2²⁹) and `0 ≤ gₗ < 2¹⁴` (the low one within ±1.5·2³⁰), so both sums
+    /// fit `i32` and `⌊V/2¹⁴⌋ = Σₕ + ⌊Σₗ/2¹⁴⌋`.
+    #[inline(always)]
+    fn fourteen(&self, q: [i16; 3]) -> i32 {
+        if platform::SOFT_MUL64 {
+            let q = q.map(i32::from);
+            let (h, l) = (&self.gh, &self.gl);
+            let hi = h[0] * q[0] + h[1] * q[1] + h[2] * q[2] + self.th;
+            let lo = l[0] * q[0] + l[1] * q[1] + l[2] * q[2] + self.tl;
+            hi + (lo >> 14)
+        } else {
+            (self.exact(q) >> 14) as i32
+        }
+    }
+}
+
+/// The draw's four rows (`X`, `Y`, `Z`, `W`) and what holds for every
+/// vertex of the mesh's box.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Rows {
+    r: [Row; 4],
+    /// `X`, `Y` at `W`'s exponent plus [`XY_SHIFT`] and `Z` at plus
+    /// [`Z_SHIFT`]: vertices take the 32-bit form.
+    fast: bool,
+    /// Fast, and every point of the mesh's box is in front of the near
+    /// plane, inside the guard band, before `z_w = 2` and far enough from
+    /// the eye: no vertex is tested.
+    contained: bool,
+}
+
+/// A vertex's window position (1/16 pixel from the set-up's origin) and
+/// depth attribute, or `None` where it goes to the rare path.
+pub(crate) type Window = Option<[i32; 3]>;
+
+impl Rows {
+    /// The rows of a `w × h` viewport (`w`, `h` ≤ 2²⁰) seen through
+    /// projection `p` from the model-view matrix `mv` with the mesh's box
+    /// folded in (`mv·(q·2⁻¹⁵, 1)` is the eye position, raw `I8F24`).
+    pub(crate) fn new(mv: &Mat4, p: &ProjectionCoeffs, w: u32, h: u32) -> Rows {
+        let m = &mv.m;
+        let eye = |r: usize, c: usize| Wide::new(m[r][c] as i64, if c < 3 { -15 } else { 0 });
+        // w_c = −z_e (perspective) or 1 (orthographic).
+        let wc: [Wide; 4] = if p.perspective {
+            [0, 1, 2, 3].map(|c| eye(2, c).neg())
+        } else {
+            [Wide::ZERO, Wide::ZERO, Wide::ZERO, Wide::new(1 << 24, 0)]
+        };
+        // A clip row `s·e_r·2⁻²⁴ + k`, scaled by `scale`, plus `off·w_c`.
+        let clip = |r: usize, s: i32, k: i32, scale: i64, off: i64| {
+            [0, 1, 2, 3].map(|c| {
+                let mut v = Wide::new(s as i64 * m[r][c] as i64, if c < 3 { -39 } else { -24 });
+                if c == 3 {
+                    v = v.add(Wide::new(k as i64, 0));
+                }
+                v.mul(scale).add(wc[c].mul(off))
+            })
+        };
+        // The set-up's origin: the pixel corner at or left of and above the
+        // viewport's centre, so that pixel centres lie at 16k + 8.
+        let (w, h) = (w as i64, h as i64);
+        let (ox, oy) = (16 * (w >> 1), 16 * (h >> 1));
+        let x = clip(0, p.sx, p.tx, 8 * w, 8 * w - ox);
+        let y = clip(1, p.sy, p.ty, -8 * h, 8 * h - oy);
+        let z = clip(2, p.a, p.b, DEPTH_K, 1 << 23);
+        let split = |v: [Wide; 4]| ([v[0], v[1], v[2]], v[3]);
+        let rows = [x, y, z, wc].map(split);
+        let natural = rows.map(|(c, k)| Row::exponent(c, k));
+        let ew = natural[3];
+        let forced = [ew + XY_SHIFT, ew + XY_SHIFT, ew + Z_SHIFT, ew];
+        let fast = (0..4).all(|k| natural[k] <= forced[k]);
+        let e = if fast { forced } else { natural };
+        let r = [0, 1, 2, 3].map(|k| Row::at(rows[k].0, rows[k].1, e[k]));
+        let mut out = Rows {
+            r,
+            fast,
+            contained: false,
+        };
+        out.contained = fast && Rows::corners().all(|q| out.lean(out.exact(q)));
+        out
+    }
+
+    /// The eight corners of the mesh's box.
+    fn corners() -> impl Iterator<Item = [i16; 3]> {
+        (0..8).map(|k| [0, 1, 2].map(|c| if k >> c & 1 == 0 { i16::MIN } else { i16::MAX }))
+    }
+
+    /// Whether the fast rows' exact values `v` are in front of the near
+    /// plane (depth attribute above 2⁷), before `z_w = 2`, inside the
+    /// guard band with half a sixteenth to spare, and `W ≥ 2³⁶` (for
+    /// [`Rows::contained`]). Each test is linear in the position, so the
+    /// box's corners decide for the box. `|X|·2¹⁶ < 2⁶²` and `G·W < 2⁶⁰`.
+    fn lean(&self, v: [i64; 4]) -> bool {
+        let [x, y, z, w] = v;
+        let band = |a: i64| a.abs() << XY_SHIFT <= (GUARD - 1) as i64 * w;
+        w >= 1 << 36 && z > (w + (1 << 18) - 1) >> 18 && z < w && band(x) && band(y)
+    }
+
+    /// The exact rows of position `q`.
+    #[inline]
+    pub(crate) fn exact(&self, q: [i16; 3]) -> [i64; 4] {
+        [0, 1, 2, 3].map(|k| self.r[k].exact(q))
+    }
+
+    /// The rows' exponents.
+    pub(crate) fn exponents(&self) -> [i32; 4] {
+        self.r.map(|r| r.e)
+    }
+
+    /// The window position and depth attribute of position `q`, or `None`
+    /// for the rare path.
+    #[inline(always)]
+    pub(crate) fn window(&self, q: [i16; 3]) -> Window {
+        if self.contained {
+            Some(self.fast::<false>(q))
+        } else if self.fast {
+            self.fast_tested(q)
+        } else {
+            None
+        }
+    }
+
+    /// [`Rows::fast`] with the tests, out of line (a draw that is not
+    /// contained).
+    #[inline(never)]
+    fn fast_tested(&self, q: [i16; 3]) -> Window {
+        let [x14, y14, z14, w14] = self.r.map(|r| r.fourteen(q));
+        // In front of the eye with 22 bits (precision), in front of the
+        // near plane, before z_w = 2, and |X/W| < 2^-2 (|x| < 2^14).
+        let quarter = w14 >> 2;
+        let lean = w14 >= 1 << 22
+            && z14 > w14 >> 18
+            && z14 < w14
+            && x14.abs() < quarter
+            && y14.abs() < quarter;
+        if !lean {
+            return None;
+        }
+        let v = self.fast::<true>(q);
+        (v[0].abs() <= GUARD && v[1].abs() <= GUARD).then_some(v)
+    }
+
+    /// The 32-bit form: `x = round(x₁₄·2¹⁶/w₁₄)` and the same for `y`,
+    /// depth `round(z₁₄·2²⁵/w₁₄)`, each from one product with `r =
+    /// ⌊2⁶³/d⌋`, `d = w₁₄·2ⁿ ∈ [2³¹, 2³²)` (capped at `2³² − 1`).
+    ///
+    /// With `|x₁₄| < w₁₄/4` (the guard band), `xs = x₁₄·2ⁿ` is below
+    /// 2³⁰ and `p = xs·r = xs·2⁶³/d − ε·xs` with `0 ≤ ε < 2`: `p/2⁴⁷` is
+    /// the quotient within `2³⁰·2/2⁴⁷ = 2⁻¹⁶`. Where its fraction lies
+    /// within 2·2⁻¹⁶ of a half, the rounding is taken from the exact
+    /// division. For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹`
+    /// (`n ≥ 1` as `w₁₄ < 2³¹`); it is not snapped, and its rounding is
+    /// the estimate's.
+    #[inline(always)]
+    fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
+        let [x14, y14, z14, w14] = self.r.map(|r| r.fourteen(q));
+        let n = platform::leading_zeros(w14 as u32);
+        let d = (w14 as u32) << n;
+        let r = recip63(d).min(u32::MAX as u64) as u32;
+        let snap = |v: i32| {
+            let p = mul_i32_u32(v << n, r);
+            // The 16 bits below the unit: within 2 of a half, ask the
+            // division.
+            if ((p >> 31) as u32 & 0xFFFF).wrapping_sub(0x8000 - 2) <= 4 {
+                return exact_round(v, w14);
+            }
+            ((p + (1 << 46)) >> 47) as i32
+        };
+        let zp = mul_i32_u32(z14 << (n - 1), r);
+        [snap(x14), snap(y14), ((zp + (1 << 36)) >> 37) as i32]
+    }
+
+    /// The unsnapped window position of fast-row position `q` in units of
+    /// 2⁻¹² of a sixteenth (`x₁₄·2²⁸/w₁₄` from the same product as the
+    /// snapped one, within 2⁻⁴ units of it; below 2²⁶ in the guard band),
+    /// or `None` where `q` has none: the facing of a sliver
+    /// (`src/triangle.rs`).
+    pub(crate) fn fine(&self, q: [i16; 3]) -> Option<[i64; 2]> {
+        let [x14, y14, _, w14] = self.r.map(|r| r.fourteen(q));
+        let quarter = w14 >> 2;
+        if !self.fast || w14 <= 0 || x14.abs() >= quarter || y14.abs() >= quarter {
+            return None;
+        }
+        let n = platform::leading_zeros(w14 as u32);
+        let r = recip63((w14 as u32) << n).min(u32::MAX as u64) as u32;
+        Some([x14, y14].map(|v| mul_i32_u32(v << n, r) >> 35))
+    }
+
+    /// The exact window position (1/16 pixel) and depth attribute of the
+    /// exact rows `v` of a point in front of the eye (`W > 0`), relative to
+    /// the set-up's origin moved by `(dx, dy)` sixteenths, if both
+    /// coordinates lie within `±limit` and the depth within `±2³⁰`: the
+    /// rare path's, for vertices and the corners clipping makes.
+    pub(crate) fn window_exact(&self, v: [i64; 4], dx: i64, dy: i64, limit: i64) -> Window {
+        let e = self.exponents();
+        let [x, y, z, w] = v;
+        if w <= 0 {
+            return None;
+        }
+        let x = quotient(x, e[0] - e[3], w)? - dx;
+        let y = quotient(y, e[1] - e[3], w)? - dy;
+        let z = quotient(z, e[2] - e[3], w)?;
+        let inside = |a: i64| a.abs() <= limit;
+        (inside(x) && inside(y) && z.abs() <= 1 << 30).then_some([x as i32, y as i32, z as i32])
+    }
+}
+
+/// `round(x·2¹⁶/w)` exactly, half up (`|x| < 2³¹`, `w > 0`).
+#[inline(never)]
+fn exact_round(x: i32, w: i32) -> i32 {
+    floor_div(((x as i64) << 17) + w as i64, 2 * w as i64) as i32
+}
+
+/// `round(v·2^s / w)`, half up, for `|v| < 2⁴⁶` and `0 < w < 2⁴⁶`, if its
+/// magnitude is below 2⁴⁰: by long division in 16-bit digits where
+/// `v·2^s` does not fit (each step's remainder below `w`, shifted by 16
+/// below 2⁶²).
+fn quotient(v: i64, s: i32, w: i64) -> Option<i64> {
+    if s < 0 {
+        // ⌊2v/(w·2^-s)⌋ = ⌊⌊2v/w⌋/2^-s⌋ (nested floors).
+        let f = floor_div(2 * v, w) >> (-s).min(63);
+        return Some((f + 1) >> 1);
+    }
+    // floor(|v|·2^(s+1)/w) in digits.
+    let (mut q, mut r) = (v.unsigned_abs() as i64 / w, v.unsigned_abs() as i64 % w);
+    let mut left = s + 1;
+    while left > 0 {
+        let c = left.min(16);
+        q = (q << c) + (r << c) / w;
+        r = (r << c) % w;
+        left -= c;
+        if q >> 42 != 0 {
+            return None;
+        }
+    }
+    // floor(2x) for the signed value, then ⌊(floor(2x) + 1)/2⌋.
+    let f = if v >= 0 { q } else { -q - (r != 0) as i64 };
+    Some((f + 1) >> 1)
+}
 
 /// The colour and flags word: red in bits 0–16, green 17–33, blue 34–50
 /// (three `Q.16` channels, 0 ..= 65536), then the flags.
 const COLOUR_MASK: u64 = (1 << 51) - 1;
-/// In front of the near plane (`z_c + w_c ≥ 0`): the window position and
-/// depth are set.
-const B_INSIDE: u64 = 1 << 51;
 /// The colour is the front face's.
 const B_FRONT: u64 = 1 << 52;
 /// The colour is the back face's (negated normal).
 const B_BACK: u64 = 1 << 53;
-/// A window coordinate lies outside `i16` (outside [−2 048, 2 048) pixels
-/// of the target's top-left corner): `x`, `y` are not kept, and
-/// [`Corners::win`] computes them again. A target of one tile (at most
-/// [`CLIP_LIMIT`](crate::rasterizer::CLIP_LIMIT) = 2 032 pixels a side)
-/// has its guard band, `±(2¹⁴ − 16)` sixteenths around its centre, within
-/// `[−2¹⁴, 2¹⁵)`: every vertex the set-up takes as it is has its position
-/// kept.
-const B_FAR: u64 = 1 << 54;
+/// The vertex goes to the rare path: behind the near plane, outside the
+/// guard band, past `z_w = 2` or too close to the eye for the 32-bit
+/// form (its window position is not kept).
+const B_RARE: u64 = 1 << 54;
 
 /// One vertex's per-frame data, in a cache the caller provides (one per
 /// mesh vertex): 16 bytes.
 ///
-/// The window position is kept as `i16` sixteenths of a pixel, the depth
-/// attribute as `i32`, and one lit colour
+/// The window position is kept as `i16` sixteenths of a pixel from the
+/// viewport's centre, the depth attribute as `i32`, and one lit colour
 /// (three 17-bit channels) with the flags in 64 bits. A vertex lit for
 /// both faces (a silhouette vertex with two-sided lighting) keeps the
 /// first face's colour; the other one is lit again when asked for.
@@ -113,6 +416,23 @@ impl CachedVertex {
         }
     }
 
+    /// The entry of a projected vertex (no colour yet).
+    #[inline(always)]
+    pub(crate) fn of(w: Window) -> CachedVertex {
+        match w {
+            Some([x, y, z]) => CachedVertex {
+                x: x as i16,
+                y: y as i16,
+                z,
+                c: [0; 2],
+            },
+            None => CachedVertex {
+                c: [0, (B_RARE >> 32) as u32],
+                ..CachedVertex::new()
+            },
+        }
+    }
+
     #[inline(always)]
     fn bits(&self) -> u64 {
         self.c[0] as u64 | (self.c[1] as u64) << 32
@@ -123,28 +443,89 @@ impl CachedVertex {
         self.c = [v as u32, (v >> 32) as u32];
     }
 
-    /// Whether flag `b` (one of bits 32–63) is set, from the high word.
+    /// Whether the vertex goes to the rare path (its position is not
+    /// kept): the flag word's bit, for a test of three vertices at once.
     #[inline(always)]
-    fn has(&self, b: u64) -> bool {
-        self.c[1] & ((b >> 32) as u32) != 0
+    pub(crate) fn rare_bits(&self) -> u32 {
+        self.c[1] & (B_RARE >> 32) as u32
     }
 
-    /// The window position kept (of a vertex in front of the near plane,
-    /// not [`B_FAR`]).
+    /// The kept window position and depth attribute (not rare).
     #[inline(always)]
-    fn kept(&self) -> Win {
+    pub(crate) fn position(&self) -> [i32; 3] {
         [self.x as i32, self.y as i32, self.z]
     }
 
-    /// The window `y` of a vertex in front of the near plane whose position
-    /// is kept (not [`B_FAR`]), else `None`.
+    /// The kept position, or `None` for a rare vertex.
     #[inline(always)]
-    pub(crate) fn near_y(&self) -> Option<i32> {
-        let near = self.c[1] & (((B_INSIDE | B_FAR) >> 32) as u32) == (B_INSIDE >> 32) as u32;
-        near.then_some(self.y as i32)
+    pub(crate) fn window(&self) -> Window {
+        (self.rare_bits() == 0).then(|| self.position())
     }
 }
 
+/// Where a draw's per-vertex work is kept: [`Cached`]
+/// ([`Shaded::with_cache`](crate::Shaded::with_cache)) or [`Recomputed`]
+/// (the default).
+///
+/// ```
+/// use fixshade::band::{Cached, Recomputed, VertexMode};
+/// use fixshade::render::CachedVertex;
+/// fn cached<X: VertexMode>(_: &X) -> bool {
+///     X::CACHED
+/// }
+/// let mut storage = [CachedVertex::default(); 3];
+/// let mut mode = Cached(&mut storage);
+/// assert!(cached(&mode) && mode.cache().len() == 3);
+/// assert!(!cached(&Recomputed) && Recomputed.cache().is_empty());
+/// ```
+pub trait VertexMode {
+    /// Whether the vertices are cached.
+    const CACHED: bool;
+    /// The cache (empty for [`Recomputed`]).
+    fn cache(&mut self) -> &mut [CachedVertex];
+}
+
+/// Vertices transformed, projected and lit once per frame, in caller
+/// storage of one [`CachedVertex`] per mesh vertex.
+///
+/// ```
+/// use fixshade::band::{Cached, VertexMode};
+/// use fixshade::render::CachedVertex;
+/// let mut storage = [CachedVertex::default(); 4];
+/// let mut mode = Cached(&mut storage);
+/// assert_eq!(mode.cache().len(), 4);
+/// ```
+#[derive(Debug)]
+pub struct Cached<'c>(pub &'c mut [CachedVertex]);
+
+impl VertexMode for Cached<'_> {
+    const CACHED: bool = true;
+    #[inline(always)]
+    fn cache(&mut self) -> &mut [CachedVertex] {
+        self.0
+    }
+}
+
+/// No per-vertex storage: each triangle's vertices are transformed,
+/// projected and lit again for each triangle (and in every band) that
+/// draws them.
+///
+/// ```
+/// use fixshade::band::{Recomputed, VertexMode};
+/// assert!(Recomputed.cache().is_empty());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Recomputed;
+
+impl VertexMode for Recomputed {
+    const CACHED: bool = false;
+    #[inline(always)]
+    fn cache(&mut self) -> &mut [CachedVertex] {
+        &mut []
+    }
+}
+
+/// The packed colour word of a shade.
 fn pack(s: Shade) -> u64 {
     let b = s.to_bits();
     b[0] as u64 | (b[1] as u64) << 17 | (b[2] as u64) << 34
@@ -160,393 +541,106 @@ fn unpack(v: u64) -> Shade {
     )
 }
 
-/// A triangle's three corners: corner `k` is `cache[slot[k]]`, mesh vertex
-/// `vertex[k]`, projected ([`Frame::project_into`]). The whole frame and
-/// the band renderer's cached mode index the frame's cache (`slot =
-/// vertex`), its recomputed mode a cache of three.
-pub(crate) struct Corners<'c> {
-    cache: &'c mut [CachedVertex],
-    slot: [usize; 3],
-    vertex: [usize; 3],
+/// The vertex stage of one draw: the rows, the lighting and what it needs
+/// of a vertex (eye position, normal).
+pub(crate) struct Stage<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
+    pub(crate) lighting: &'a Lighting<S, V, L>,
+    pub(crate) mesh: &'a Mesh<'m>,
+    /// The model-view matrix with the mesh's box folded in.
+    modelview: Mat4,
+    normal_m: [[i16; 3]; 3],
+    pub(crate) rows: Rows,
 }
 
-impl<'c> Corners<'c> {
-    /// Triangle `idx` (mesh vertex indices) of a cache of one entry per
-    /// mesh vertex.
-    #[inline(always)]
-    pub(crate) fn of(cache: &'c mut [CachedVertex], idx: [usize; 3]) -> Self {
-        Corners {
-            cache,
-            slot: idx,
-            vertex: idx,
+impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
+    /// The stage for `mesh` drawn with `modelview` (without the box),
+    /// projection `p`, on a `w × h` viewport.
+    pub(crate) fn new(
+        lighting: &'a Lighting<S, V, L>,
+        mesh: &'a Mesh<'m>,
+        modelview: &Mat4,
+        p: &ProjectionCoeffs,
+        w: u32,
+        h: u32,
+    ) -> Self {
+        let folded = mesh.bounds.fold(modelview);
+        Stage {
+            lighting,
+            mesh,
+            modelview: folded,
+            normal_m: normal_matrix(modelview).unwrap_or([[0; 3]; 3]),
+            rows: Rows::new(&folded, p, w, h),
         }
     }
 
-    /// Triangle `idx` from a cache of its three corners, in order.
+    /// Mesh vertex `i`'s position (`i` below the vertex count).
     #[inline(always)]
-    pub(crate) fn of_three(cache: &'c mut [CachedVertex; 3], idx: [usize; 3]) -> Self {
-        Corners {
-            cache,
-            slot: [0, 1, 2],
-            vertex: idx,
-        }
+    pub(crate) fn position(&self, i: usize) -> [i16; 3] {
+        self.mesh.positions.get(i).copied().unwrap_or([0; 3])
     }
 
-    /// The mesh vertex of corner `k`.
+    /// Projects mesh vertex `i` (no colour yet).
     #[inline(always)]
-    pub(crate) fn vertex(&self, k: usize) -> usize {
-        self.vertex[k]
+    pub(crate) fn project(&self, i: usize) -> CachedVertex {
+        CachedVertex::of(self.rows.window(self.position(i)))
     }
 
-    /// Whether corner `k` is in front of the near plane (`z_c + w_c ≥ 0`).
-    #[inline(always)]
-    pub(crate) fn inside(&self, k: usize) -> bool {
-        self.cache[self.slot[k]].has(B_INSIDE)
-    }
-
-    /// Window position and depth of corner `k` (in front of the near plane).
-    #[inline(always)]
-    pub(crate) fn win<S: Specular, V: Viewer, L: LightSet>(
-        &self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-    ) -> Win {
-        let v = &self.cache[self.slot[k]];
-        if v.has(B_FAR) {
-            f.far_window(self.vertex[k])
-        } else {
-            v.kept()
-        }
-    }
-
-    /// [`Corners::win`] of all three corners (in front of the near plane),
-    /// with one test for far ones.
-    #[inline(always)]
-    pub(crate) fn wins<S: Specular, V: Viewer, L: LightSet>(
-        &self,
-        f: &Frame<'_, '_, S, V, L>,
-    ) -> [Win; 3] {
-        let v = self.slot.map(|s| &self.cache[s]);
-        if (v[0].c[1] | v[1].c[1] | v[2].c[1]) & ((B_FAR >> 32) as u32) == 0 {
-            [v[0].kept(), v[1].kept(), v[2].kept()]
-        } else {
-            self.wins_far(f)
-        }
-    }
-
-    /// [`Corners::wins`] with a far corner, out of line (rare).
-    #[inline(never)]
-    fn wins_far<S: Specular, V: Viewer, L: LightSet>(
-        &self,
-        f: &Frame<'_, '_, S, V, L>,
-    ) -> [Win; 3] {
-        [self.win(f, 0), self.win(f, 1), self.win(f, 2)]
-    }
-
-    /// Clip-space position of corner `k` (asked only when the triangle
-    /// crosses the near plane or the guard band, or may have turned over).
-    pub(crate) fn clip<S: Specular, V: Viewer, L: LightSet>(
-        &self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-    ) -> [i64; 4] {
-        f.proj.clip(f.eye(self.vertex[k]))
-    }
-
-    /// The lit colour of corner `k`, for its back (negated normal) if `back`.
-    #[inline(always)]
-    pub(crate) fn shade<S: Specular, V: Viewer, L: LightSet>(
-        &mut self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        back: bool,
-        stats: &mut DrawStats,
-    ) -> Shade {
-        let v = &mut self.cache[self.slot[k]];
-        let want = if back { B_BACK } else { B_FRONT };
-        if v.has(want) {
-            unpack(v.bits())
-        } else {
-            f.light(v, self.vertex[k], want, stats)
-        }
-    }
-
-    /// Eye-space position and (if `normal`) normal of corner `k`.
-    #[inline(always)]
-    pub(crate) fn eye_normal<S: Specular, V: Viewer, L: LightSet>(
-        &self,
-        f: &Frame<'_, '_, S, V, L>,
-        k: usize,
-        normal: bool,
-    ) -> (Vec3, Unit3) {
-        let i = self.vertex[k];
-        let n = if normal { f.eye_normal(i) } else { Unit3::ZERO };
-        (f.eye(i), n)
-    }
-}
-
-/// `⌊num/2^k + ½⌋` for any `k`, or ±[`QUOT_SAT`] where that is larger in
-/// magnitude. For `1 ≤ k ≤ 63` it is `⌊(⌊num/2^(k−1)⌋ + 1)/2⌋` (nested
-/// floors), the inner quotient first saturated (so the `+ 1` cannot
-/// overflow); for `k ≥ 64`, `|num/2^k| ≤ ½` rounds to 0.
-fn shift_round(num: i64, k: i32) -> i64 {
-    let q = match k {
-        64.. => return 0,
-        1..=63 => num >> (k - 1),
-        _ => num.saturating_mul(1 << (-k).min(62)),
-    };
-    let q = q.clamp(-2 * QUOT_SAT, 2 * QUOT_SAT);
-    if k >= 1 {
-        (q + 1) >> 1
-    } else {
-        q.clamp(-QUOT_SAT, QUOT_SAT)
-    }
-}
-
-/// The projection's `x` and `y` rows folded with the viewport and the
-/// model-view matrix (the mesh's box in it), once a draw: from a mesh's
-/// `i16` position `q`, `X = Σ g[c]·q[c] + t` is `8W·x_c·2^down` before
-/// the eye position's and `x_c`'s roundings (likewise `Y` for
-/// `−8H·y_c`), so the window position is `X/(w_c·2^down) + 8W`.
-///
-/// Exactly, with `M` the model-view rows in raw `I8F24` and `q` read as
-/// `Q.15`: `x_e·2¹⁵ = Σ M[c]·q[c] + M[3]·2¹⁵`, `x_c·2³⁹ = s_x·x_e·2¹⁵ +
-/// t_x·2³⁹`, so `G[c] = 8W·s_x·M[c]` (below `2²³·2³¹·2³¹ = 2⁸⁵`) and `T =
-/// 8W·(s_x·M[3]·2¹⁵ + t_x·2³⁹)` (below 2¹⁰¹), in `i128`. A row keeps them
-/// divided by `2^e`, rounded, with `e` the least that brings every
-/// `|g[c]|` to at most 2²⁸ and `|t|` to at most 2⁴⁴ (`down = 39 − e`):
-/// then `|X| ≤ 3·2²⁸·2¹⁵ + 2⁴⁴ < 2⁴⁶`, each product `i32 × i16`. The
-/// entries' roundings move `X` by at most `3·2¹⁴ + ½` against a
-/// magnitude of 2⁴⁴ or more where `t` set `e` (2⁻²⁹ of it), or 2²⁸·|q|
-/// where a `g` did: precision relative to the mesh's extent and
-/// position, whatever the world's size.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Fold {
-    g: [[i32; 3]; 2],
-    t: [i64; 2],
-    /// Each row's `down`.
-    pub(crate) down: [i32; 2],
-}
-
-impl Fold {
-    /// The rows for a target of `w × h` pixels.
-    pub(crate) fn new(m: &Mat4, p: &ProjectionCoeffs, w: i64, h: i64) -> Fold {
-        let mut fold = Fold {
-            g: [[0; 3]; 2],
-            t: [0; 2],
-            down: [0; 2],
-        };
-        let rows = [(8 * w, p.sx, p.tx, 0), (-8 * h, p.sy, p.ty, 1)];
-        for (k, (scale, s, t, r)) in rows.into_iter().enumerate() {
-            let row = &m.m[r];
-            let g = [0, 1, 2].map(|c| scale as i128 * s as i128 * row[c] as i128);
-            let t = scale as i128 * (((s as i128 * row[3] as i128) << 15) + ((t as i128) << 39));
-            let bits = |v: u128| 128 - v.leading_zeros() as i32;
-            let gmax = g.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
-            let e = (bits(gmax) - 28).max(bits(t.unsigned_abs()) - 44);
-            let scaled = |v: i128| {
-                if e > 0 {
-                    (v + (1 << (e - 1))) >> e
-                } else {
-                    v << -e
-                }
-            };
-            fold.g[k] = g.map(|v| scaled(v) as i32);
-            fold.t[k] = scaled(t) as i64;
-            fold.down[k] = 39 - e;
-        }
-        fold
-    }
-
-    /// `X` (`k = 0`) or `Y` (`k = 1`) of position `q`.
-    #[inline(always)]
-    pub(crate) fn row(&self, k: usize, q: [i16; 3]) -> i64 {
-        let g = &self.g[k];
-        mul_i32_i16(g[0], q[0]) + mul_i32_i16(g[1], q[1]) + mul_i32_i16(g[2], q[2]) + self.t[k]
-    }
-}
-
-impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Projects every vertex of the mesh into `cache` (one per vertex), the
-    /// vertex's work inlined in one loop instead of a call per vertex.
+    /// Projects every vertex of the mesh into `cache` (one per vertex).
     #[inline(never)]
     pub(crate) fn project_all(&self, cache: &mut [CachedVertex]) {
-        for (i, c) in cache.iter_mut().enumerate() {
-            self.project_into(c, i);
+        for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
+            *c = CachedVertex::of(self.rows.window(*q));
         }
-    }
-
-    /// The corners `idx` projected and snapped, without a cache (no colour
-    /// yet).
-    #[inline(always)]
-    pub(crate) fn project3(&self, idx: [usize; 3]) -> [CachedVertex; 3] {
-        let mut l = [CachedVertex::new(); 3];
-        for (c, &i) in l.iter_mut().zip(&idx) {
-            self.project_into(c, i);
-        }
-        l
-    }
-
-    /// Projects and snaps mesh vertex `i` into `c` (no colour yet).
-    #[inline(always)]
-    pub(crate) fn project_into(&self, c: &mut CachedVertex, i: usize) {
-        *c = CachedVertex::new();
-        let Some(w) = self.vertex_window(i) else {
-            return;
-        };
-        c.z = w[2];
-        match (i16::try_from(w[0]), i16::try_from(w[1])) {
-            (Ok(x), Ok(y)) => {
-                (c.x, c.y) = (x, y);
-                c.set_bits(B_INSIDE);
-            }
-            _ => c.set_bits(B_INSIDE | B_FAR),
-        }
-    }
-
-    /// The window position of a vertex in front of the near plane that
-    /// [`Frame::project_into`] found far ([`B_FAR`]): the same computation
-    /// (rare, out of line).
-    #[inline(never)]
-    pub(crate) fn far_window(&self, i: usize) -> Win {
-        self.vertex_window(i).unwrap_or([0; 3])
-    }
-
-    /// Window position and depth attribute of mesh vertex `i`, or `None`
-    /// behind the near plane (`z_c + w_c < 0`).
-    ///
-    /// Its eye-space depth and `z_c`, `w_c` are computed as
-    /// [`ProjectionCoeffs::clip`] computes them, so the near test agrees
-    /// with the clipping's; `x` and `y` come from the mesh position through
-    /// the folded rows ([`Fold`]), divided by `w_c` with one reciprocal.
-    #[inline(always)]
-    fn vertex_window(&self, i: usize) -> Option<Win> {
-        let q = self.mesh.positions[i];
-        let [z, w] = self.depth_clip(q);
-        if z + w < 0 {
-            return None;
-        }
-        let f = &self.fold;
-        Some(self.window_of((f.row(0, q), f.down[0]), (f.row(1, q), f.down[1]), z, w))
-    }
-
-    /// The folded rows and `w_c` of mesh vertex `i` (in front of the near
-    /// plane): its window position is `(X/(w·2^dx) + 8W, Y/(w·2^dy) + 8H)`
-    /// before rounding. [`Fold`] bounds `|X|, |Y|` by 2⁴⁶; `0 < w ≤ 2³¹`
-    /// for a vertex with a window position.
-    pub(crate) fn homogeneous(&self, i: usize) -> [i64; 3] {
-        let q = self.mesh.positions[i];
-        let [_, w] = self.depth_clip(q);
-        [self.fold.row(0, q), self.fold.row(1, q), w]
-    }
-
-    /// `[z_c, w_c]` of mesh position `q`: its eye-space depth row, then
-    /// [`ProjectionCoeffs::depth_clip`] (the clip coordinates' own).
-    #[inline(always)]
-    fn depth_clip(&self, q: [i16; 3]) -> [i64; 2] {
-        self.proj.depth_clip(self.modelview.quantised_row(2, q))
     }
 
     /// Eye-space position of mesh vertex `i`.
     #[inline]
     pub(crate) fn eye(&self, i: usize) -> Vec3 {
-        self.modelview.transform_quantised(self.mesh.positions[i])
+        self.modelview.transform_quantised(self.position(i))
     }
 
     /// Eye-space normal of mesh vertex `i`: its octahedral point
     /// transformed, then normalised once.
+    ///
+    /// `|M_n| ≤ 2¹⁴` and `Σ|N| ≤ 3·2¹⁵` (32767 for the encoder's bits), so
+    /// each row's sum of 16 × 16-bit products is at most `3·2²⁹ < 2³¹`.
     #[inline]
     pub(crate) fn eye_normal(&self, i: usize) -> Unit3 {
-        match self.mesh.normals {
-            Some(ns) => self.normal_to_eye(ns[i].octahedron()),
-            None => Unit3::ZERO,
-        }
-    }
-
-    /// `N_eye = normalise(M_n · N)` for `N` a point of the octahedron
-    /// ([`PackedNormal::octahedron`]): `|M_n| ≤ 2¹⁴` and `Σ|N| ≤ 3·2¹⁵`
-    /// (32767 for the encoder's bits), so each row's sum of 16 × 16-bit
-    /// products is at most `3·2²⁹ < 2³¹`.
-    ///
-    /// [`PackedNormal::octahedron`]: crate::mesh::PackedNormal::octahedron
-    #[inline]
-    fn normal_to_eye(&self, b: [i32; 3]) -> Unit3 {
-        let m = &self.r.normal_m;
+        let Some(n) = self.mesh.normals.and_then(|ns| ns.get(i)) else {
+            return Unit3::ZERO;
+        };
+        let b = n.octahedron();
+        let m = &self.normal_m;
         let row = |r: usize| m[r][0] as i32 * b[0] + m[r][1] as i32 * b[1] + m[r][2] as i32 * b[2];
         normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
     }
 
-    /// Window position (1/16 pixel, clamped to ±2²⁸) and depth attribute of
-    /// a clip-space point in front of the near plane (SPEC.md 1, 5): a
-    /// corner that clipping made.
-    ///
-    /// `|x_c|, |y_c|, |z_c| < 2³⁸ + 2³¹` (a projection coefficient below
-    /// 2³¹ raw times an `I8F24` coordinate, shifted by 24, plus an offset
-    /// below 2³¹) and `8W, 8H ≤ 2²³`: `8W·x_c` is below 2⁶², within `i64`.
-    #[inline(never)]
-    pub(crate) fn window(&self, c: &[i64; 4]) -> Win {
-        let x = mul_by_narrow(c[0], 8 * self.w);
-        let y = mul_by_narrow(-c[1], 8 * self.h);
-        self.window_of((x, 0), (y, 0), c[2], c[3])
-    }
-
-    /// The window position `(X/(w·2^dx) + 8W, Y/(w·2^dy) + 8H)` rounded to
-    /// 1/16 pixel (`dx`, `dy`: the [`Fold`]'s shifts, 0 for a corner that
-    /// clipping made) and the depth attribute `Z = ⌊z_c·K/w⌋ + 2²³`, `K =
-    /// 65535·2⁷ = 2²³ − 2⁷`, each quotient from one reciprocal of `w`
-    /// ([`Recip::div_scaled`]: within `½ + |q|·2⁻²⁹` of the exact `q`, so a
-    /// snapped coordinate within ±2²⁴ is within 1/16 of the rounding's
-    /// half-unit; beyond, it is clamped or far off screen).
-    ///
-    /// The depth attribute is scaled so that `Z >> 8` is SPEC.md 5's
-    /// quantised depth `d = ⌊z_w·65535 + ½⌋`: with `z_w = (z_c/w + 1)/2`,
-    /// `z_w·65535·2⁸ + 2⁷ = z_c·K/w + 2²³` (the offset `65535·2⁷ + 2⁷` is
-    /// `2²³`), and `⌊⌊x⌋/2⁸⌋ = ⌊x/2⁸⌋`. The floor is the rounding of
-    /// `(2K·z_c − w)/(2w)`: `|2K·z_c| < 2²⁴·(2³⁸ + 2³¹)` and `w ≤ 2³¹`, so
-    /// the numerator is within `i64`.
-    ///
-    /// Clamps: `x`, `y` to ±2²⁸ and `Z` to ±2³⁰ ([`Win`]); a quotient that
-    /// [`Recip::div_scaled`] saturates lands on them.
+    /// The lit colour of vertex `i` (its entry `v`), for its back (negated
+    /// normal) if `back`: the cached one, or lit now and kept if the entry
+    /// has none yet.
     #[inline(always)]
-    fn window_of(&self, x: (i64, i32), y: (i64, i32), z: i64, w: i64) -> Win {
-        if w <= 0 {
-            return [0, 0, 0];
-        }
-        let (hw, hh) = (8 * self.w, 8 * self.h);
-        let z = mul_by_narrow(z, (1 << 24) - (1 << 8)) - w;
-        let [x, y, z] = if w & (w - 1) == 0 {
-            // A power of two (every `w` of an orthographic projection):
-            // exact quotients.
-            let k = w.trailing_zeros() as i32;
-            [
-                shift_round(x.0, k + x.1),
-                shift_round(y.0, k + y.1),
-                shift_round(z, k + 1),
-            ]
+    pub(crate) fn shade(
+        &self,
+        v: &mut CachedVertex,
+        i: usize,
+        back: bool,
+        stats: &mut DrawStats,
+    ) -> Shade {
+        let want = if back { B_BACK } else { B_FRONT };
+        if v.c[1] & (want >> 32) as u32 != 0 {
+            unpack(v.bits())
         } else {
-            // Kept positions are within 2¹⁶ of the viewport's centre,
-            // depths within 2²⁴ (a point between the near and far planes).
-            let r = Recip::new(w);
-            [
-                r.div_scaled(x.0, x.1, 16),
-                r.div_scaled(y.0, y.1, 16),
-                r.div_scaled(z, 1, 24),
-            ]
-        };
-        [
-            (x + hw).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
-            (y + hh).clamp(-COORD_LIMIT, COORD_LIMIT) as i32,
-            (z + (1 << 23)).clamp(-(1 << 30), 1 << 30) as i32,
-        ]
+            self.light(v, i, want, stats)
+        }
     }
 
-    /// Lights `v` (mesh vertex `i`) for the facing `want` ([`B_FRONT`] or
-    /// [`B_BACK`]), keeping the colour if the vertex has none yet.
+    /// Lights `v` (mesh vertex `i`) for the facing `want`, keeping the
+    /// colour if the vertex has none yet.
     #[inline(never)]
     fn light(&self, v: &mut CachedVertex, i: usize, want: u64, stats: &mut DrawStats) -> Shade {
         let n = self.eye_normal(i);
         let n = if want == B_BACK { n.neg() } else { n };
-        let s = self.r.lighting().shade(self.eye(i), n);
+        let s = self.lighting.shade(self.eye(i), n);
         stats.lit = stats.lit.saturating_add(1);
         let bits = v.bits();
         if bits & (B_FRONT | B_BACK) == 0 {
@@ -558,31 +652,97 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
 #[cfg(test)]
 mod tests {
-    use super::shift_round;
-    use crate::rasterizer::tests::xorshift;
-    use crate::rasterizer::QUOT_SAT;
+    use super::*;
+    use crate::camera::Camera;
+    use crate::tests::xorshift;
 
-    /// `shift_round` is `⌊num/2^k + ½⌋` in `i128`, saturated: both signs,
-    /// every magnitude, ties, shifts either way and past 64.
+    /// The composed values are the products and sums they stand for, to
+    /// 2⁻⁵⁰ (an `f64` holds 53 bits).
     #[test]
-    fn shift_round_is_the_rounded_quotient() {
-        let mut next = xorshift(0x8f1b_bcdc_ca62_c1d6);
-        let mut nums = vec![0i64, 1, -1, i64::MAX, i64::MIN + 1, 3 << 20, -(3 << 20)];
-        nums.extend(
-            (0..20_000).map(|_| (next() >> (next() % 64)) as i64 * [1, -1][(next() & 1) as usize]),
-        );
-        for num in nums {
-            for k in -70..=70 {
-                let want = if k >= 0 {
-                    let d = 1i128 << k.min(100);
-                    (2 * num as i128 + d).div_euclid(2 * d)
-                } else {
-                    let v = num as i128;
-                    v.checked_mul(1 << -k).unwrap_or(v.signum() * i128::MAX)
-                };
-                let want = want.clamp(-(QUOT_SAT as i128), QUOT_SAT as i128) as i64;
-                assert_eq!(shift_round(num, k), want, "{num} >> {k}");
+    fn wide_products_and_sums() {
+        let mut next = xorshift(0x2545_f491_4f6c_dd1d);
+        for _ in 0..100_000 {
+            let a = (next() >> (next() % 63 + 1)) as i64 * if next() & 1 == 0 { 1 } else { -1 };
+            let b = (next() >> 33) as i64 * if next() & 1 == 0 { 1 } else { -1 };
+            let (ea, eb) = ((next() % 40) as i32 - 20, (next() % 40) as i32 - 20);
+            let p = Wide::new(a, ea).mul(b);
+            let want = a as f64 * b as f64 * 2f64.powi(ea);
+            let got = p.m as f64 * 2f64.powi(p.e);
+            assert!(
+                (got - want).abs() <= want.abs() * 2f64.powi(-50) + 1e-300,
+                "{a} {b}"
+            );
+            let s = Wide::new(a, ea).add(Wide::new(b, eb));
+            let want = a as f64 * 2f64.powi(ea) + b as f64 * 2f64.powi(eb);
+            let got = s.m as f64 * 2f64.powi(s.e);
+            let scale = (a as f64 * 2f64.powi(ea))
+                .abs()
+                .max((b as f64 * 2f64.powi(eb)).abs());
+            assert!(
+                (got - want).abs() <= scale * 2f64.powi(-50),
+                "{a} {ea} {b} {eb}"
+            );
+        }
+    }
+
+    /// Split and whole rows agree: `⌊V/2¹⁴⌋` from 32-bit pieces is the
+    /// exact one, at the rows' bounds and at random positions.
+    #[test]
+    fn fourteen_is_the_exact_floor() {
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..2_000 {
+            let c = [0, 1, 2].map(|_| {
+                Wide::new(
+                    (next() >> 35) as i64 * if next() & 1 == 0 { 1 } else { -1 },
+                    0,
+                )
+            });
+            let k = Wide::new(
+                (next() >> 19) as i64 * if next() & 1 == 0 { 1 } else { -1 },
+                0,
+            );
+            let row = Row::at(c, k, Row::exponent(c, k));
+            assert!(row.g.iter().all(|g| g.unsigned_abs() <= 1 << 28));
+            assert!(row.t.unsigned_abs() <= 1 << 43);
+            for q in Rows::corners().chain((0..20).map(|_| [0, 1, 2].map(|_| next() as i16))) {
+                let v = row.exact(q);
+                let q32 = q.map(i32::from);
+                let hi = row.gh[0] * q32[0] + row.gh[1] * q32[1] + row.gh[2] * q32[2] + row.th;
+                let lo = row.gl[0] * q32[0] + row.gl[1] * q32[1] + row.gl[2] * q32[2] + row.tl;
+                assert_eq!((hi + (lo >> 14)) as i64, v >> 14);
+                assert_eq!(row.fourteen(q) as i64, v >> 14);
             }
+        }
+    }
+
+    /// The fast form's positions are the exact rounding of `x₁₄·2¹⁶/w₁₄`,
+    /// so within `(2¹⁶ + |x|)/w₁₄` of a sixteenth of the exact window
+    /// position beyond the rounding (the floors' share); its depth within
+    /// one unit; a contained draw's every vertex takes it.
+    #[test]
+    fn fast_positions_are_exact_roundings() {
+        let cam = Camera::look_at([0.3, 0.4, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+        let p = cam.projection_for(320, 240).unwrap();
+        let m = crate::mesh::Bounds::cube(1.0).fold(&cam.view);
+        let rows = Rows::new(&m, &p, 320, 240);
+        assert!(rows.fast && rows.contained);
+        let mut next = xorshift(0x1234_5678_9abc_def1);
+        for _ in 0..200_000 {
+            let q = [0, 1, 2].map(|_| next() as i16);
+            let [x, y, z] = rows.window(q).unwrap();
+            let v = rows.exact(q);
+            let [x14, y14, _, w14] = [0, 1, 2, 3].map(|k| (v[k] >> 14) as i32);
+            assert_eq!(x, exact_round(x14, w14));
+            assert_eq!(y, exact_round(y14, w14));
+            let ex = v[0] as f64 / v[3] as f64 * 65536.0;
+            let floors = (65536.0 + ex.abs()) / w14 as f64;
+            assert!((x as f64 - ex).abs() <= 0.5 + floors, "{x} {ex}");
+            let ez = v[2] as f64 / v[3] as f64 * 2f64.powi(25);
+            assert!((z as f64 - ez).abs() <= 1.0, "{z} {ez}");
+            assert_eq!(
+                rows.window_exact(v, 0, 0, 1 << 20).map(|w| w[2]),
+                Some(z).map(|_| rows.window_exact(v, 0, 0, 1 << 20).unwrap()[2])
+            );
         }
     }
 }

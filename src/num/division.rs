@@ -7,14 +7,14 @@
 //!
 //! A 64-bit division is one instruction on a 64-bit core and a library call
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
-//! Cortex-M4 (which divides only 32-bit numbers in hardware). Where
-//! [`platform::SOFT_DIV64`] holds (targets whose pointers are narrower than
-//! 64 bits), a reciprocal takes [`recip63`]: two 32-bit divisions where the
-//! core has them, else a table, a Newton step and an exact remainder step.
-//! The values are the same on every target (unit tests hold each form to
-//! the plain division, [`recip63`] over its whole domain, which CI runs in
-//! release; CI runs the whole suite on the host with `--cfg
-//! fixshade_soft_div64`), so frames stay bit-exact.
+//! Cortex-M4 (which divides only 32-bit numbers in hardware); a 32-bit one
+//! is a library call on the Cortex-M0. [`recip63`] makes a reciprocal with
+//! two 32-bit divisions where the core has them, else a table, a Newton
+//! step and an exact remainder step; [`Divisor`] shares one among several
+//! exact floors. The values are the same on every target (unit tests hold
+//! each form to the plain division, [`recip63`] over its whole domain,
+//! which CI runs in release; CI runs the whole suite on the host with
+//! `--cfg fixshade_soft_div32`), so frames stay bit-exact.
 
 use core::ops::{Add, Div, Rem, Sub};
 
@@ -69,6 +69,76 @@ fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
         (a - b + T::from(1)) / b
     } else {
         a / b
+    }
+}
+
+/// Exact floors `⌊n/d⌋` of any `i32` numerators by one divisor `d ∈ [1,
+/// 2³¹)`: the core's division where it has one, else a shared reciprocal
+/// `r = ⌊2⁶³/(d·2ˢ)⌋` (`d·2ˢ ∈ [2³¹, 2³²)`) and a correction. The same
+/// values on every core.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Divisor {
+    d: u32,
+    r: u32,
+    s: u32,
+}
+
+impl Divisor {
+    /// The divisor `d` (`1 ≤ d < 2³¹`).
+    #[inline(always)]
+    pub(crate) fn new(d: i32) -> Divisor {
+        debug_assert!(d > 0);
+        if platform::hardware_div32() {
+            return Divisor {
+                d: d as u32,
+                r: 0,
+                s: 0,
+            };
+        }
+        let s = platform::leading_zeros(d as u32);
+        let r = recip63((d as u32) << s).min(u32::MAX as u64) as u32;
+        Divisor { d: d as u32, r, s }
+    }
+
+    /// `⌊n/d⌋`.
+    #[inline(always)]
+    pub(crate) fn floor(&self, n: i32) -> i32 {
+        if platform::hardware_div32() {
+            floor_div(n, self.d as i32)
+        } else {
+            self.floor_by_reciprocal(n)
+        }
+    }
+
+    /// [`Divisor::floor`] without a division. With `a = |n| ≤ 2³¹`, `q =
+    /// ⌊a·r/2⁶³⁻ˢ⌋` (from [`mul_hi32`], which may be one short) is below
+    /// `a/d` by at most `a·2/2⁶³⁻ˢ ≤ 2ˢ⁻³¹` (`r ≥ 2⁶³/(d·2ˢ) − 2`), plus
+    /// `2ˢ⁻³¹` for the short product and 1 for the floor: three below
+    /// `⌊a/d⌋` at most, and one where `d ≥ 2³⁰` (`s ≤ 1`). So the remainder
+    /// `a − q·d` is below `4d < 2³²` (`d < 2³⁰`) or `2d < 2³²`: exact in
+    /// wrapping `u32` arithmetic, and stepped down below `d`.
+    #[inline(always)]
+    fn floor_by_reciprocal(&self, n: i32) -> i32 {
+        let a = n.unsigned_abs();
+        let mut q = mul_hi32(a, self.r) >> (31 - self.s);
+        let mut rem = a.wrapping_sub(q.wrapping_mul(self.d));
+        while rem >= self.d {
+            q += 1;
+            rem -= self.d;
+        }
+        if n >= 0 {
+            q as i32
+        } else if rem == 0 {
+            (q as i32).wrapping_neg()
+        } else {
+            (q as i32).wrapping_neg() - 1
+        }
+    }
+
+    /// `⌈n/d⌉` (`n > i32::MIN`).
+    #[inline(always)]
+    pub(crate) fn ceil(&self, n: i32) -> i32 {
+        -self.floor(-n)
     }
 }
 
@@ -209,8 +279,8 @@ fn recip63_newton(d: u32) -> u64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton};
-    use crate::rasterizer::tests::xorshift;
+    use super::{floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, Divisor};
+    use crate::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
     /// takes the remainder, in `i64` and `i32`: numerators of both signs and
@@ -257,6 +327,44 @@ mod tests {
             let want = (1u64 << 63) / d as u64;
             assert_eq!(recip63_newton(d), want, "{d}");
             assert_eq!(recip63_by_digits(d), want, "{d}");
+        }
+    }
+
+    /// The reciprocal form of [`Divisor`] is the division: numerators at
+    /// both ends of `i32` and around multiples, divisors of every size.
+    #[test]
+    fn divisor_floors_are_the_division() {
+        let mut next = xorshift(0x0bad_5eed_1234_5678);
+        let mut ds: Vec<i32> = vec![1, 2, 3, 15, 16, 17, i32::MAX, i32::MAX - 1, 1 << 30];
+        ds.extend((0..3000).map(|_| ((next() >> (33 + next() % 31)) as i32).max(1)));
+        for d in ds {
+            let s = d.leading_zeros();
+            let v = Divisor {
+                d: d as u32,
+                r: super::recip63((d as u32) << s).min(u32::MAX as u64) as u32,
+                s,
+            };
+            let mut ns = vec![
+                0,
+                1,
+                -1,
+                i32::MAX,
+                i32::MIN,
+                i32::MIN + 1,
+                d,
+                -d,
+                d - 1,
+                1 - d,
+            ];
+            ns.extend((0..60).map(|_| (next() >> (next() % 33)) as i32));
+            for n in ns {
+                let want = (n as i64).div_euclid(d as i64);
+                assert_eq!(v.floor_by_reciprocal(n) as i64, want, "{n} / {d}");
+                assert_eq!(v.floor(n) as i64, want, "{n} / {d}");
+                if n != i32::MIN {
+                    assert_eq!(v.ceil(n) as i64, -((-(n as i64)).div_euclid(d as i64)));
+                }
+            }
         }
     }
 

@@ -33,32 +33,25 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
     }
 }
 
-/// `a · b` for `a` and `b` within `i32`'s range, as `i64`s (the plain
-/// product on the other targets, where narrowing them first would cost
-/// instructions on x86-64; a debug build with `fixshade_soft_mul64` checks
-/// the range).
+/// `a · b`, exactly (`|a·b| < 2⁶³`): on the targets without a 32 × 32 →
+/// 64-bit multiply, four 16 × 16 → 32-bit products (`aₕ` signed, the other
+/// halves unsigned: `|aₕ·bₕ|`, `|aₕ·bₗ| < 2³¹`, `aₗ·bₕ`, `aₗ·bₗ < 2³²`).
 #[inline(always)]
-pub(crate) fn mul_narrow(a: i64, b: i64) -> i64 {
+pub(crate) fn mul_i32_u32(a: i32, b: u32) -> i64 {
     if platform::SOFT_MUL64 {
-        debug_assert!(i32::try_from(a).is_ok() && i32::try_from(b).is_ok());
-        mul_i32_limbs(a as i32, b as i32)
+        mul_i32_u32_limbs(a, b)
     } else {
-        a * b
+        a as i64 * b as i64
     }
 }
 
-/// `a · b` for `b` within `i32`'s range and a product that fits `i64` (a
-/// debug build with `fixshade_soft_mul64` checks both).
+/// [`mul_i32_u32`] from 16-bit halves.
 #[inline(always)]
-pub(crate) fn mul_by_narrow(a: i64, b: i64) -> i64 {
-    if platform::SOFT_MUL64 {
-        debug_assert!(i32::try_from(b).is_ok());
-        let p = mul_i64_i32_limbs(a, b as i32);
-        debug_assert_eq!(Some(p), a.checked_mul(b));
-        p
-    } else {
-        a * b
-    }
+pub(crate) fn mul_i32_u32_limbs(a: i32, b: u32) -> i64 {
+    let (ah, al) = (a >> 16, (a & 0xFFFF) as u32);
+    let (bh, bl) = ((b >> 16) as i32, b & 0xFFFF);
+    let mid = (ah * bl as i32) as i64 + (al * bh as u32) as i64;
+    (((ah * bh) as i64) << 32) + (mid << 16) + (al * bl) as i64
 }
 
 /// [`mul_i32`] from 16-bit halves: `a = aₕ·2¹⁶ + aₗ` with `aₕ` signed
@@ -105,20 +98,6 @@ pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
     (((ah * b) as i64) << 16) + (al * b) as i64
 }
 
-/// [`mul_by_narrow`] modulo 2⁶⁴ from 32-bit limbs: with `a = aₕ·2³² + aₗ`
-/// (`aₗ` unsigned) and `b` read as unsigned (`b + 2³²` when negative),
-/// `a·b ≡ aₗ·b_u + (aₕ·b − [b < 0]·aₗ)·2³²`, and only the low 32 bits of
-/// the second term matter.
-#[inline(always)]
-pub(crate) fn mul_i64_i32_limbs(a: i64, b: i32) -> i64 {
-    let (ah, al) = ((a >> 32) as i32, a as u32);
-    let p = mul_u32_limbs(al, b as u32);
-    let hi = ((p >> 32) as u32)
-        .wrapping_add(ah.wrapping_mul(b) as u32)
-        .wrapping_sub((b >> 31) as u32 & al);
-    (((hi as u64) << 32) | (p & 0xFFFF_FFFF)) as i64
-}
-
 /// `⌊a·b / 2³²⌋` or one less, from three 16 × 16 → 32-bit products (a
 /// 64-bit multiply is a library call on thumbv6m).
 ///
@@ -141,8 +120,8 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i64_i32_limbs, mul_u32_limbs};
-    use crate::rasterizer::tests::xorshift;
+    use super::{mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs, mul_u32_limbs};
+    use crate::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
     fn operands() -> impl Iterator<Item = u64> {
@@ -189,11 +168,9 @@ mod tests {
                 let h = mul_hi32(a as u32, b as u32);
                 let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
                 assert!(h == exact || h + 1 == exact, "{a} {b}");
-                let a64 = a as i64;
                 assert_eq!(
-                    mul_i64_i32_limbs(a64, b32),
-                    a64.wrapping_mul(b32 as i64),
-                    "{a64} {b32}"
+                    mul_i32_u32_limbs(a32, b as u32),
+                    a32 as i64 * (b as u32) as i64
                 );
             }
         }

@@ -6,3 +6,13 @@ mod normalize;
 mod public_items;
 mod span_shaders;
 mod specular_table;
+
+/// A xorshift64 generator: the tests' reproducible random numbers.
+pub(crate) fn xorshift(mut x: u64) -> impl FnMut() -> u64 {
+    move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    }
+}

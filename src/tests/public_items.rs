@@ -2,22 +2,26 @@
 //! items"): each item declared `pub` at the top level of a public module's
 //! file is named there.
 
-/// The public modules' sources, by module name.
-const MODULES: [(&str, &str); 14] = [
-    ("band", include_str!("../band.rs")),
-    ("camera", include_str!("../camera.rs")),
-    ("color", include_str!("../color.rs")),
-    ("depth", include_str!("../depth.rs")),
-    ("framebuffer", include_str!("../framebuffer.rs")),
-    ("illumination", include_str!("../illumination.rs")),
-    ("light", include_str!("../light.rs")),
-    ("material", include_str!("../material.rs")),
-    ("mesh", include_str!("../mesh.rs")),
-    ("num", include_str!("../num/mini_float.rs")),
-    ("num", include_str!("../num/wide_point.rs")),
-    ("render", include_str!("../render.rs")),
-    ("renderer", include_str!("../renderer.rs")),
-    ("vector", include_str!("../vector.rs")),
+/// The public modules' sources, by the modules whose path names their
+/// items (the private `options` and `vertex` hold items that `render` and
+/// `band` re-export).
+const MODULES: [(&[&str], &str); 16] = [
+    (&["band"], include_str!("../band.rs")),
+    (&["camera"], include_str!("../camera.rs")),
+    (&["color"], include_str!("../color.rs")),
+    (&["depth"], include_str!("../depth.rs")),
+    (&["framebuffer"], include_str!("../framebuffer.rs")),
+    (&["illumination"], include_str!("../illumination.rs")),
+    (&["light"], include_str!("../light.rs")),
+    (&["material"], include_str!("../material.rs")),
+    (&["mesh"], include_str!("../mesh.rs")),
+    (&["num"], include_str!("../num/mini_float.rs")),
+    (&["num"], include_str!("../num/wide_point.rs")),
+    (&["render"], include_str!("../options.rs")),
+    (&["band", "render"], include_str!("../vertex.rs")),
+    (&["render"], include_str!("../render.rs")),
+    (&["renderer"], include_str!("../renderer.rs")),
+    (&["vector"], include_str!("../vector.rs")),
 ];
 
 /// The names of the items declared `pub` at the start of a line (not
@@ -62,13 +66,12 @@ fn every_public_item_is_listed_in_the_overview() {
     let lib = include_str!("../lib.rs");
     let list = &lib[lib.find("# Public items").expect("the overview's list")..];
     let mut seen = 0;
-    for (module, src) in MODULES {
+    for (modules, src) in MODULES {
         for name in public_items(src) {
-            let link = format!("[`{name}`]({module}::{name})");
-            assert!(
-                list.contains(&link),
-                "{module}::{name} is not in lib.rs's list"
-            );
+            let listed = modules
+                .iter()
+                .any(|m| list.contains(&format!("[`{name}`]({m}::{name})")));
+            assert!(listed, "{modules:?}::{name} is not in lib.rs's list");
             seen += 1;
         }
     }

@@ -1,0 +1,123 @@
+//! One triangle from its three projected vertices to its pieces: culling
+//! and the cheap rejections of the lean path, before any lighting.
+//!
+//! The lean path takes a triangle whose three vertices have kept window
+//! positions (in front of the near plane, inside the guard band: see
+//! `src/vertex.rs`), in 32-bit arithmetic. Anything else — a vertex behind
+//! the near plane or outside the guard band, a draw whose rows do not
+//! allow the 32-bit vertex form — goes to the rare path (`src/clip.rs`).
+//! Both end in [`Frame::pieces`](crate::shade::Frame::pieces).
+//!
+//! # Facing
+//! A triangle faces the way its unsnapped window positions do. One that
+//! snapping to 1/16 pixel turns over (a sliver thinner than about √2/16
+//! pixel) is degenerate and draws nothing, with culling on or off: a back
+//! face that snaps to a front face is not drawn over the surface in front
+//! of it, and a front face that snaps to a back face is not drawn as a
+//! back face. The unsnapped facing is asked only where the snapped area is
+//! small enough for snapping to have changed its sign ([`snap_may_flip`]).
+
+use crate::clip;
+use crate::depth::DepthTest;
+use crate::illumination::Viewer;
+use crate::light::LightSet;
+use crate::material::Specular;
+use crate::options::{DrawStats, ShadingMode};
+use crate::shade::{Corners, Frame, Same};
+use crate::span::Out;
+
+impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
+    /// Culls, lights and draws one triangle.
+    #[inline(always)]
+    pub(crate) fn triangle<M: ShadingMode, O: Out, D: DepthTest>(
+        &self,
+        c: &mut Corners,
+        out: &mut O,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), O::Error> {
+        let (Some(v0), Some(v1), Some(v2)) = (
+            c.cache.get(c.slot[0]),
+            c.cache.get(c.slot[1]),
+            c.cache.get(c.slot[2]),
+        ) else {
+            return Ok(());
+        };
+        if v0.rare_bits() | v1.rare_bits() | v2.rare_bits() != 0 {
+            return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
+        }
+        let p = [v0.position(), v1.position(), v2.position()];
+        let area =
+            (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+        if area == 0 || (area > 0 && self.options.cull) {
+            return Ok(());
+        }
+        if !self.meets(&p) {
+            return Ok(());
+        }
+        if snap_may_flip(area, &p) && self.turned_over(c, area) {
+            return Ok(());
+        }
+        let corners = [0, 1, 2].map(|k| (p[k][0], p[k][1], p[k][2]));
+        self.pieces::<M, O, D, _>(
+            c,
+            &corners,
+            Same,
+            &[[0, 1, 2]],
+            area,
+            (&self.rect, (0, 0)),
+            out,
+            depth,
+            stats,
+        )
+    }
+
+    /// Whether the box of window positions `p` holds a pixel centre of the
+    /// pixels drawn: the cheap test that spares off-screen and tiny
+    /// triangles their lighting and set-up. Sample `16x + 8` lies in
+    /// `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
+    #[inline(always)]
+    fn meets(&self, p: &[[i32; 3]; 3]) -> bool {
+        let r = &self.rect;
+        let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
+        let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
+        let (x0, x1) = (((lo(0) + 7) >> 4).max(r.c0), ((hi(0) - 8) >> 4).min(r.c1));
+        let (y0, y1) = (((lo(1) + 7) >> 4).max(r.r0), ((hi(1) - 8) >> 4).min(r.r1));
+        x0 <= x1 && y0 <= y1
+    }
+
+    /// Whether the unsnapped triangle faces otherwise than its snapped
+    /// doubled area `a` says, or has no area (rare, out of line).
+    #[inline(never)]
+    fn turned_over(&self, c: &Corners, a: i32) -> bool {
+        let rows = &self.stage.rows;
+        let f = c.vertex.map(|i| rows.fine(self.stage.position(i)));
+        let [Some(f0), Some(f1), Some(f2)] = f else {
+            return true;
+        };
+        // Positions within 2²⁶: differences within 2²⁷, products 2⁵⁴.
+        let fine = (f1[0] - f0[0]) * (f2[1] - f0[1]) - (f2[0] - f0[0]) * (f1[1] - f0[1]);
+        fine == 0 || (fine < 0) != (a < 0)
+    }
+}
+
+/// Whether snapping may have given the triangle of window positions `w` a
+/// doubled area `a` of another sign than its unsnapped positions have, or
+/// made it zero.
+///
+/// Each unsnapped coordinate `x` becomes `X`, within `½ + ε` of it (`ε`
+/// the unsnapped value's own error, far below 1/16). The snapped corner is
+/// `Sₖ = Pₖ + eₖ`, both components of `eₖ` within `½ + ε`. The doubled
+/// area is the cyclic sum `a = Σ Sₖ × Sₖ₊₁`, so the unsnapped one is
+/// `A = a − Σ eₖ × (Sₖ₊₁ − Sₖ₋₁) + Σ eₖ × eₖ₊₁`. Each `eₖ × d` is at most
+/// `(½ + ε)(|d_x| + |d_y|)`, and the last sum is the doubled area of a
+/// triangle inside a square of side `1 + 2ε`: `|A − a|` is at most
+/// `(½ + ε)·p + (1 + 2ε)²`, `p` the sum of `|dx| + |dy|` over the three
+/// sides. With `ε ≤ 1/16`, when `2|a| > p + p/8 + 3`, `A` has `a`'s sign.
+/// Coordinates within the guard band: `p < 2¹⁸`.
+#[inline(always)]
+fn snap_may_flip(a: i32, w: &[[i32; 3]; 3]) -> bool {
+    let side = |j: usize, k: usize| (w[k][0] - w[j][0]).abs() + (w[k][1] - w[j][1]).abs();
+    let p = side(0, 1) + side(1, 2) + side(2, 0);
+    2 * a.unsigned_abs() <= (p + (p >> 3) + 3) as u32
+}

@@ -1,0 +1,149 @@
+//! The row walk: a set-up triangle's rows top to bottom, each row's span
+//! from its two edges, and the attribute planes at the span's first pixel.
+//!
+//! # Coverage (SPEC.md 5)
+//! Row `r` samples at `sy = 16r + 8` (1/16 pixel, from the set-up's
+//! origin). An edge from `a` down to `b` (`dy = b.y − a.y > 0`) meets that
+//! row at `X(sy) = a.x + dx·(sy − a.y)/dy`; a span's left bound is the
+//! first column `c` with `16c + 8 ≥ X` (a sample on a left edge is the
+//! triangle's), its right bound the last with `16c + 8 < X`. A row whose
+//! sample lies on a horizontal top edge is drawn, one on a horizontal
+//! bottom edge is not. That is the top-left rule: two triangles sharing an
+//! edge draw each sample on it once. Every bound is exact: an edge's
+//! column is an integer quotient stepped with its remainder row by row.
+//!
+//! # Planes
+//! Attribute `k` at pixel `(c, r)` is `at[k] + gx[k]·c + gy[k]·(r − r₀)`
+//! in wrapping `i32` arithmetic (`src/setup.rs` says why that is exact), so
+//! a row's value is the same whether it was stepped to or computed, in a
+//! band or in the whole frame.
+
+use crate::num::division::Divisor;
+
+/// One edge's column bound, stepped row by row: `q = ⌈n / D⌉` with `n =
+/// q·D − rem`, `0 ≤ rem < D`, `D = 16·dy`.
+///
+/// `n = (a.x − 8)·dy + dx·(sy − a.y)`: `|a.x − 8| < 2¹⁴`, `dy < 2¹⁵`,
+/// `|dx| < 2¹⁵` and `|sy − a.y| < 2¹⁵` (the sample row lies inside the
+/// guard band), so `|n| < 2²⁹ + 2³⁰`, and `q·D ≤ n + D` fits too.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Edge {
+    q: i32,
+    rem: i32,
+    d: i32,
+    /// Per row: `q += step`, `rem += rstep`, then one carry.
+    step: i32,
+    rstep: i32,
+}
+
+impl Edge {
+    /// The edge `a → b` (`b.y > a.y`) at sample row `sy`: both quotients
+    /// by one [`Divisor`] of `dy` (`⌈n/16dy⌉ = ⌈⌈n/16⌉/dy⌉`).
+    #[inline(always)]
+    pub(crate) fn new(a: (i32, i32), b: (i32, i32), sy: i32) -> Edge {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let div = Divisor::new(dy);
+        let d = 16 * dy;
+        let n = (a.0 - 8) * dy + dx * (sy - a.1);
+        let q = div.ceil((n + 15) >> 4);
+        // ⌈dx/dy⌉·dy − dx ∈ [0, dy): the remainder's step, in 16ths.
+        let step = div.ceil(dx);
+        Edge {
+            q,
+            rem: q * d - n,
+            d,
+            step,
+            rstep: 16 * (step * dy - dx),
+        }
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        self.q += self.step;
+        self.rem += self.rstep;
+        if self.rem >= self.d {
+            self.rem -= self.d;
+            self.q -= 1;
+        }
+    }
+}
+
+/// A set-up triangle ready to walk: its rows, edges and planes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Walk<const N: usize> {
+    /// The first and last rows drawn.
+    pub(crate) rows: (i32, i32),
+    /// The columns drawn.
+    pub(crate) cols: (i32, i32),
+    /// The long edge (top to bottom vertex) and the short edge that holds
+    /// the first row.
+    pub(crate) long: Edge,
+    pub(crate) short: Edge,
+    /// Whether the long edge is the left one.
+    pub(crate) long_left: bool,
+    /// The row from which the lower short edge (`lower`'s two vertices)
+    /// takes over (`i32::MAX`: never).
+    pub(crate) switch: i32,
+    pub(crate) lower: ((i32, i32), (i32, i32)),
+    /// The planes at column 0 of the first row, and their steps.
+    pub(crate) at: [i32; N],
+    pub(crate) gx: [i32; N],
+    pub(crate) gy: [i32; N],
+}
+
+/// A span: row `y`, columns `x0 ..= x0 + n − 1` (from the set-up's
+/// origin), the planes at its first pixel and their step per pixel.
+#[derive(Clone, Copy)]
+pub(crate) struct Span<'a, const N: usize> {
+    pub(crate) y: i32,
+    pub(crate) x0: i32,
+    pub(crate) n: u32,
+    pub(crate) start: [i32; N],
+    pub(crate) step: &'a [i32; N],
+}
+
+impl<const N: usize> Walk<N> {
+    /// Calls `span` for each non-empty span, top to bottom, until it
+    /// fails.
+    #[inline(always)]
+    pub(crate) fn run<E>(self, mut span: impl FnMut(&Span<N>) -> Result<(), E>) -> Result<(), E> {
+        let (mut left, mut right) = if self.long_left {
+            (self.long, self.short)
+        } else {
+            (self.short, self.long)
+        };
+        let mut row = self.at;
+        let (c0, c1) = self.cols;
+        for y in self.rows.0..=self.rows.1 {
+            if y == self.switch {
+                let e = Edge::new(self.lower.0, self.lower.1, 16 * y + 8);
+                if self.long_left {
+                    right = e;
+                } else {
+                    left = e;
+                }
+            }
+            let lo = left.q.max(c0);
+            let hi = (right.q - 1).min(c1);
+            if lo <= hi {
+                let mut start = row;
+                for (s, g) in start.iter_mut().zip(&self.gx) {
+                    *s = s.wrapping_add(g.wrapping_mul(lo));
+                }
+                span(&Span {
+                    y,
+                    x0: lo,
+                    n: (hi - lo + 1) as u32,
+                    start,
+                    step: &self.gx,
+                })?;
+            }
+            for (r, g) in row.iter_mut().zip(&self.gy) {
+                *r = r.wrapping_add(*g);
+            }
+            left.advance();
+            right.advance();
+        }
+        Ok(())
+    }
+}
