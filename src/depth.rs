@@ -27,6 +27,13 @@ pub trait DepthTest {
     /// The stored depths of row `y` from column `x0`, `len` of them, or an
     /// empty slice for [`NoDepth`].
     fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16];
+    /// The storage as rows of a width from a first row, if it is laid out
+    /// so (the renderer's spans then index it as they index the colour).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn flat(&mut self) -> Option<(&mut [u16], u32, u32)> {
+        None
+    }
 }
 
 impl<Z: DepthTest> DepthTest for &mut Z {
@@ -34,6 +41,10 @@ impl<Z: DepthTest> DepthTest for &mut Z {
     #[inline(always)]
     fn row(&mut self, y: u32, x0: u32, len: u32) -> &mut [u16] {
         (**self).row(y, x0, len)
+    }
+    #[inline(always)]
+    fn flat(&mut self) -> Option<(&mut [u16], u32, u32)> {
+        (**self).flat()
     }
 }
 
@@ -169,6 +180,10 @@ impl DepthTest for DepthBuffer<'_> {
         let len = len.min(self.width - x0) as usize;
         &mut self.buf[start..start + len]
     }
+    #[inline(always)]
+    fn flat(&mut self) -> Option<(&mut [u16], u32, u32)> {
+        Some((&mut *self.buf, self.width, 0))
+    }
 }
 
 /// A depth band: the depths of `rows` rows of a `width`-pixel-wide
@@ -275,6 +290,11 @@ impl DepthTest for DepthBand<'_> {
         let len = len.min(self.width - x0) as usize;
         &mut self.buf[start..start + len]
     }
+    #[inline(always)]
+    fn flat(&mut self) -> Option<(&mut [u16], u32, u32)> {
+        let n = self.width as usize * self.rows as usize;
+        Some((self.buf.get_mut(..n)?, self.width, self.y0))
+    }
 }
 
 #[cfg(test)]
@@ -286,7 +306,7 @@ mod tests {
     #[test]
     fn no_depth_draws_later_over_earlier() {
         use crate::span::{Flat, Memory, Out};
-        use crate::walk::Span;
+        use crate::walk::{Planes, Span};
         assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
         let mut px = [0u16; 4];
         let mut out = Memory::new(&mut px, 4, 0, (0, 0));
@@ -296,12 +316,17 @@ mod tests {
                 shade: Default::default(),
                 dither: false,
             };
+            let planes = Planes {
+                at: [z],
+                gx: [0],
+                gy: [0],
+            };
             let span = Span {
                 y: 0,
                 x0: 0,
                 n: 4,
-                start: [z],
-                step: &[0],
+                dy: 0,
+                planes: &planes,
             };
             out.span(&mut NoDepth, &span, &sh).unwrap();
         }

@@ -17,13 +17,13 @@
 //! that holds vertex 0. The sums are taken modulo 2³² (wrapping): they are
 //! integers, so at every pixel they equal the same sum taken without a
 //! bound, which differs from the exact plane by at most `(½ + (|d₁| +
-//! |d₂|)·2⁻²⁵)·(|c − c₀| + |r − r₀|) + 2` units, `d` the attribute's
+//! |d₂|)·2⁻²⁴)·(|c − c₀| + |r − r₀| + 1) + 1` units, `d` the attribute's
 //! differences from vertex 0 ([`gradients`] bounds each gradient's error;
 //! `src/tests/coverage.rs` holds the bound at the limits). At a covered
 //! pixel the exact plane lies between the vertex values, so the integer
 //! plane is that close to their range there, whatever the gradients'
 //! size: below 2¹²·⁶ units for attributes within 2²², the colours', and
-//! 2¹⁴·² for any (`|d| < 2²⁶`), across the guard band's 2¹² pixels. A
+//! 2¹⁵·² for any (`|d| < 2²⁶`), across the guard band's 2¹² pixels. A
 //! caller whose values keep that margin inside their field needs no
 //! clamp.
 //!
@@ -37,7 +37,7 @@
 use crate::num::division::{floor_div, recip63};
 use crate::num::widening::{mul_i32, mul_i32_i16, mul_i32_u32};
 use crate::platform;
-use crate::walk::{Edge, Walk};
+use crate::walk::{Edge, Planes, Walk};
 
 /// Attribute values lie within `±ATTR`: their differences, below 2²⁶,
 /// times a side below 2¹⁵, stay below 2⁴¹.
@@ -69,16 +69,17 @@ pub(crate) fn area<const N: usize>(v: &[Vtx<N>; 3]) -> i32 {
     (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y)
 }
 
-/// Sets up triangle `v` of doubled area `area` (not 0) on `rect`: `None`
-/// where it has no sample row in `rect`'s rows. Attributes below `first`
-/// are left out (their planes are 0).
+/// Sets up triangle `v` of doubled area `area` (not 0) on `rect`, its
+/// planes into `planes`: `None` where it has no sample row in `rect`'s
+/// rows. Attributes below `first` are left out (their planes are 0).
 #[inline(always)]
 pub(crate) fn set_up<const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
     first: usize,
     rect: &Rect,
-) -> Option<Walk<N>> {
+    planes: &mut Planes<N>,
+) -> Option<Walk> {
     // Sorted top to bottom.
     let (mut t, mut m, mut b) = (&v[0], &v[1], &v[2]);
     if m.y < t.y {
@@ -101,15 +102,14 @@ pub(crate) fn set_up<const N: usize>(
     // The pixel holding vertex 0, and its centre's offset from it.
     let (c0, r0) = (v[0].x >> 4, v[0].y >> 4);
     let o = (16 * c0 + 8 - v[0].x, 16 * r0 + 8 - v[0].y);
-    let (gx, gy, off) = gradients(v, area, first, o);
+    let off = gradients(v, area, first, o, planes);
     // The plane at that centre, then at column 0 of the first row
     // (wrapping: see the module's text).
-    let mut at = [0i32; N];
     for k in first..N {
         let base = (v[0].a[k] << 4).wrapping_add(off[k]);
-        at[k] = base
-            .wrapping_sub(gx[k].wrapping_mul(c0))
-            .wrapping_add(gy[k].wrapping_mul(r_top - r0));
+        planes.at[k] = base
+            .wrapping_sub(planes.gx[k].wrapping_mul(c0))
+            .wrapping_add(planes.gy[k].wrapping_mul(r_top - r0));
     }
     // The edges at the first row: the long one, and the short one that
     // holds that row.
@@ -130,29 +130,33 @@ pub(crate) fn set_up<const N: usize>(
         // The first row whose sample lies at or below the middle vertex.
         switch: if upper { (m.y + 7) >> 4 } else { i32::MAX },
         lower: ((m.x, m.y), (b.x, b.y)),
-        at,
-        gx,
-        gy,
     })
 }
 
 /// The gradients per pixel of attributes `first..N` (units of 2⁻⁴ of an
-/// attribute), from the barycentric coordinates' gradients, and the planes'
-/// change from vertex 0 to the centre `o` sixteenths from it (`|o| ≤ 8`),
-/// `round((gx·oₓ + gy·o_y)/16)` modulo 2³².
+/// attribute), from the barycentric coordinates' gradients, into `planes`;
+/// returns the planes' change from vertex 0 to the centre `o` sixteenths
+/// from it (`|o| ≤ 8`), `round((gx·oₓ + gy·o_y)/16)` modulo 2³².
 ///
 /// Vertex `k`'s weight `λₖ` has gradients `∂λ₁/∂x = dy₂/A`, `∂λ₁/∂y =
 /// −dx₂/A`, `∂λ₂/∂x = −dy₁/A`, `∂λ₂/∂y = dx₁/A` (per sixteenth; `A` the
 /// doubled area), so an attribute's gradient per pixel in plane units is
 /// `gx = 256·(d₁·dy₂ − d₂·dy₁)/A = d₁·Λ₁ₓ + d₂·Λ₂ₓ` with `Λ = 256·side/A`.
 /// The four `Λ` are kept as `i32` multiples of 2⁻²⁴ (`Λ·2²⁴ =
-/// side·r/2³⁹⁻ⁿ`, `r = ⌊2⁶³/(|A|·2ⁿ)⌋`), so each gradient is two `i32 ×
-/// i32` products summed and shifted by 24: the `Λ` within 2⁻²⁴ units of
-/// their value plus 2⁻³¹ of it, the gradient within `|d₁| + |d₂|` units of
-/// 2⁻²⁴ and 2⁻³⁰ of its terms. A triangle whose `Λ` or gradients do not
-/// fit (a sliver, a steep plane) takes the exact quotients ([`steep`]).
+/// ⌊side·r/2³¹⁻ⁿ⌋`, `r = ⌊2⁶³/(|A|·2ⁿ)⌋`), so each gradient is two `i32 ×
+/// i32` products summed and shifted by 24: the `Λ` within a unit of 2⁻²⁴
+/// plus 2⁻³¹ of their value, the gradient within `|d₁| + |d₂|` units of
+/// 2⁻²⁴ and 2⁻³⁰ of its terms, plus its rounding's ½. A triangle whose `Λ`
+/// or gradients do not fit (a sliver, a steep plane) takes the exact
+/// quotients ([`steep_gradients`]).
 #[inline(always)]
-fn gradients<const N: usize>(v: &[Vtx<N>; 3], area: i32, first: usize, o: (i32, i32)) -> Planes<N> {
+fn gradients<const N: usize>(
+    v: &[Vtx<N>; 3],
+    area: i32,
+    first: usize,
+    o: (i32, i32),
+    planes: &mut Planes<N>,
+) -> [i32; N] {
     let (dx1, dy1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs();
@@ -163,45 +167,39 @@ fn gradients<const N: usize>(v: &[Vtx<N>; 3], area: i32, first: usize, o: (i32, 
     let sign = if area < 0 { -1 } else { 1 };
     let mut lam = [0i32; 4];
     for (l, &s) in lam.iter_mut().zip(&sides) {
-        // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31 (31 for
-        // |A| = 1, where the shift is 0), rounded.
-        let p = mul_i32_u32(s * sign, r);
-        let p = if n < 31 {
-            ((p >> (30 - n)) + 1) >> 1
-        } else {
-            p
-        };
-        match i32::try_from(p) {
-            Ok(p) => *l = p,
-            Err(_) => return steep_gradients(v, area, first, o),
+        // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31.
+        match shr_to_i32(mul_i32_u32(s * sign, r), 31 - n) {
+            Some(p) => *l = p,
+            None => return steep_gradients(v, area, first, o, planes),
         }
     }
-    let mut gx = [0i32; N];
-    let mut gy = [0i32; N];
     let mut off = [0i32; N];
     for k in first..N {
         let d1 = v[1].a[k] - v[0].a[k];
         let d2 = v[2].a[k] - v[0].a[k];
-        let g = |l1: i32, l2: i32| {
-            // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sum below 2⁵⁸.
-            let p = (mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23)) >> 24;
-            i32::try_from(p).ok()
-        };
+        // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
+        let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
         match (g(lam[0], lam[2]), g(lam[1], lam[3])) {
             (Some(x), Some(y)) => {
-                gx[k] = x;
-                gy[k] = y;
+                planes.gx[k] = x;
+                planes.gy[k] = y;
                 off[k] = offset(x as i64, y as i64, o);
             }
-            _ => return steep_gradients(v, area, first, o),
+            _ => return steep_gradients(v, area, first, o, planes),
         }
     }
-    (gx, gy, off)
+    off
 }
 
-/// A triangle's planes: gradients `gx`, `gy` and the offsets of
-/// [`gradients`].
-type Planes<const N: usize> = ([i32; N], [i32; N], [i32; N]);
+/// `⌊p/2ᵏ⌋` (`k ≤ 31`) if it fits `i32`: from `p`'s 32-bit halves, a
+/// variable 64-bit shift being a sequence of its own on a 32-bit core.
+#[inline(always)]
+fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
+    let (lo, hi) = (p as u32, (p >> 32) as i32);
+    let q = ((lo >> k) | (((hi as u32) << 1) << (31 - k))) as i32;
+    // It fits where the high half holds nothing but the sign beyond it.
+    ((hi >> k) == (q >> 31)).then_some(q)
+}
 
 /// `round((gx·oₓ + gy·o_y)/16)` modulo 2³² (`|g| < 2⁵¹`, `|o| ≤ 8`: each
 /// product below 2⁵⁴).
@@ -223,7 +221,8 @@ fn steep_gradients<const N: usize>(
     area: i32,
     first: usize,
     o: (i32, i32),
-) -> Planes<N> {
+    planes: &mut Planes<N>,
+) -> [i32; N] {
     let (dx1, dy1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs() as i64;
@@ -236,8 +235,6 @@ fn steep_gradients<const N: usize>(
             q
         }
     };
-    let mut gx = [0i32; N];
-    let mut gy = [0i32; N];
     let mut off = [0i32; N];
     for k in first..N {
         let d1 = (v[1].a[k] - v[0].a[k]) as i64;
@@ -246,11 +243,11 @@ fn steep_gradients<const N: usize>(
             q(d1 * dy2 as i64 - d2 * dy1 as i64),
             q(d2 * dx1 as i64 - d1 * dx2 as i64),
         );
-        gx[k] = x as i32;
-        gy[k] = y as i32;
+        planes.gx[k] = x as i32;
+        planes.gy[k] = y as i32;
         off[k] = offset(x, y, o);
     }
-    (gx, gy, off)
+    off
 }
 
 #[cfg(test)]
@@ -325,9 +322,10 @@ mod tests {
             r0: 0,
             r1: h - 1,
         };
-        if let Some(walk) = set_up(v, a, 0, &rect) {
-            walk.run(|s| {
-                got.push((s.y, s.x0, s.x0 + s.n as i32 - 1, s.start[0]));
+        let mut planes = Planes::default();
+        if let Some(walk) = set_up(v, a, 0, &rect, &mut planes) {
+            walk.run(&planes, |s| {
+                got.push((s.y, s.x0, s.x0 + s.n as i32 - 1, s.start()[0]));
                 Ok::<(), ()>(())
             })
             .unwrap();
@@ -358,13 +356,13 @@ mod tests {
             assert_eq!(want.len(), got.len(), "{v:?}");
             count += got.len();
             let d = [v[1].a[0] - v[0].a[0], v[2].a[0] - v[0].a[0]].map(|d| d.unsigned_abs() as f64);
-            let rate = 0.5 + (d[0] + d[1]) / (1u64 << 25) as f64;
+            let rate = 0.5 + (d[0] + d[1]) / (1u64 << 24) as f64;
             for (w, g) in want.iter().zip(&got) {
                 assert_eq!(*w, (g.0, g.1, g.2), "{v:?}");
                 let off = (g.1 - (v[0].x >> 4)).abs() + (g.0 - (v[0].y >> 4)).abs();
                 let e = 16.0 * exact(&v, (16 * g.1 + 8) as f64, (16 * g.0 + 8) as f64);
                 let err = (g.3 as f64 - e).abs();
-                assert!(err <= rate * off as f64 + 2.0, "{v:?}: {g:?} {e}");
+                assert!(err <= rate * (off + 1) as f64 + 1.0, "{v:?}: {g:?} {e}");
             }
         }
         assert!(count > 30_000, "{count}");
@@ -409,10 +407,11 @@ mod tests {
             if a == 0 {
                 continue;
             }
-            if let Some(w) = set_up(&v, a, 0, &rect) {
-                w.run(|s| {
+            let mut planes = Planes::default();
+            if let Some(w) = set_up(&v, a, 0, &rect, &mut planes) {
+                w.run(&planes, |s| {
                     for k in 0..s.n as i32 {
-                        let p = s.start[0].wrapping_add(s.step[0].wrapping_mul(k));
+                        let p = s.start()[0].wrapping_add(s.step()[0].wrapping_mul(k));
                         assert!(p.unsigned_abs() <= (ATTR as u32) * 16 + (1 << 11), "{v:?}");
                         seen += 1;
                     }

@@ -19,7 +19,7 @@ use crate::setup::{self, Rect, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
-use crate::walk::Span;
+use crate::walk::{Planes, Span};
 
 /// One draw's constants and what it draws into: the vertex stage, the
 /// switches, the pixels drawn.
@@ -215,13 +215,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if area == 0 {
             return Ok(());
         }
-        let Some(walk) = setup::set_up(v, area, first, rect) else {
+        let mut planes = Planes::default();
+        let Some(walk) = setup::set_up(v, area, first, rect, &mut planes) else {
             return Ok(());
         };
         stats.drawn = stats.drawn.saturating_add(1);
         // A triangle's pixels are at most 2¹¹ × 2¹¹: no overflow.
         let mut pixels = 0u32;
-        let res = walk.run(|s: &Span<N>| {
+        let res = walk.run(&planes, |s: &Span<N>| {
             let moved;
             let s = if tile == (0, 0) {
                 s

@@ -3,7 +3,7 @@
 //!
 //! A span's attributes are the set-up's integer planes (`src/setup.rs`),
 //! stepped by one wrapping add a pixel: attribute 0 is the depth (its
-//! `>> 12` is SPEC.md 5's `d`, see [`depth16`]), the others the shading
+//! `>> 12` is SPEC.md 5's `d`, see `depth16`), the others the shading
 //! mode's. Gouraud colours are three planes of `Q.20` values (the 5- or
 //! 6-bit channel times 2²⁰, plus ½ for SPEC.md 6's rounding), each pixel's
 //! channel its plane's `>> 20`: the planes keep a margin of 2¹⁹ inside
@@ -39,11 +39,24 @@ fn depth16(z: i32) -> i32 {
     (z >> 12).clamp(0, 0xFFFF)
 }
 
-/// The colour of a span's pixel from its attributes.
-pub(crate) trait Shader<const N: usize> {
+/// The colour of a span's pixel from its attributes, and the span's loops.
+pub(crate) trait Shader<const N: usize>: Sized {
     /// The colour (raw RGB565) of the pixel at target column `x`, row `y`
     /// with attributes `a`.
     fn pixel(&self, a: &[i32; N], x: i32, y: i32) -> u16;
+
+    /// Span `s`'s pixels into `row`, from target pixel `at` on.
+    #[inline(always)]
+    fn fill(&self, row: &mut [u16], s: &Span<N>, at: (i32, i32)) {
+        fill(self, row, &s.start(), s.step(), at)
+    }
+
+    /// [`Shader::fill`] through the depth test against and into `zrow`:
+    /// the pixels written.
+    #[inline(always)]
+    fn fill_depth(&self, row: &mut [u16], zrow: &mut [u16], s: &Span<N>, at: (i32, i32)) -> u32 {
+        fill_depth(self, row, zrow, &s.start(), s.step(), at)
+    }
 }
 
 /// Gouraud colours: attributes 1–3 are the red, green and blue planes.
@@ -53,6 +66,13 @@ impl Shader<4> for Gouraud {
     #[inline(always)]
     fn pixel(&self, a: &[i32; 4], _: i32, _: i32) -> u16 {
         platform::pack_planes(a[1], a[2], a[3])
+    }
+
+    /// The platform's loop (assembly on the Cortex-M cores), which makes
+    /// the span's start from the planes itself.
+    #[inline(always)]
+    fn fill_depth(&self, row: &mut [u16], zrow: &mut [u16], s: &Span<4>, _: (i32, i32)) -> u32 {
+        platform::gouraud_depth(row, zrow, s.planes, s.x0, s.dy)
     }
 }
 
@@ -155,7 +175,7 @@ fn step<const N: usize>(a: &mut [i32; N], d: &[i32; N], first: usize) {
 }
 
 /// Where a draw's spans go: spans in the set-up's coordinates (pixels from
-/// its origin, [`Out::origin`] of the target's first pixel).
+/// its origin, at a target pixel the output knows).
 pub(crate) trait Out {
     /// The target's error.
     type Error;
@@ -168,6 +188,10 @@ pub(crate) trait Out {
         s: &Span<N>,
         sh: &Sh,
     ) -> Result<u32, Self::Error>;
+
+    /// Moves the set-up's origin by `by` pixels (a big target's tile on
+    /// the rare path, `src/clip.rs`).
+    fn moved(&mut self, by: (i32, i32));
 }
 
 /// Pixels in memory: rows `y0 ..` of a `width`-pixel-wide target, row-major
@@ -176,6 +200,7 @@ pub(crate) trait Out {
 pub(crate) struct Memory<'b> {
     buf: &'b mut [u16],
     width: u32,
+    y0: u32,
     origin: (i32, i32),
     /// The index of the set-up's origin pixel in `buf` (negative in a band
     /// below it: wrapping).
@@ -186,16 +211,15 @@ impl<'b> Memory<'b> {
     /// Rows `y0 ..` of a `width`-pixel-wide target (at most 2²⁰ × 2²⁰
     /// pixels) in `buf`, the set-up's origin at target pixel `origin`.
     pub(crate) fn new(buf: &'b mut [u16], width: u32, y0: u32, origin: (i32, i32)) -> Self {
-        let at = (origin.1 as u32)
-            .wrapping_sub(y0)
-            .wrapping_mul(width)
-            .wrapping_add(origin.0 as u32);
-        Memory {
+        let mut m = Memory {
             buf,
             width,
+            y0,
             origin,
-            at,
-        }
+            at: 0,
+        };
+        m.moved((0, 0));
+        m
     }
 }
 
@@ -215,23 +239,30 @@ impl Out for Memory<'_> {
             .wrapping_mul(self.width)
             .wrapping_add(s.x0 as u32)
             .wrapping_add(self.at) as usize;
-        let Some(row) = self.buf.get_mut(start..start + s.n as usize) else {
+        let end = start + s.n as usize;
+        let Some(row) = self.buf.get_mut(start..end) else {
             return Ok(0);
         };
-        let (x, y) = ((s.x0 + self.origin.0) as u32, (s.y + self.origin.1) as u32);
+        let at = (s.x0 + self.origin.0, s.y + self.origin.1);
         if !D::ENABLED {
-            fill(sh, row, &s.start, s.step, (x as i32, y as i32));
+            sh.fill(row, s, at);
             return Ok(s.n);
         }
-        let zrow = depth.row(y, x, s.n);
-        Ok(fill_depth(
-            sh,
-            row,
-            zrow,
-            &s.start,
-            s.step,
-            (x as i32, y as i32),
-        ))
+        // A depth store laid out as the colour (a buffer of the target's
+        // width, a band of the same rows) takes the same index.
+        let zrow = match depth.flat() {
+            Some((z, w, y0)) if w == self.width && y0 == self.y0 => z.get_mut(start..end),
+            _ => Some(depth.row(at.1 as u32, at.0 as u32, s.n)),
+        };
+        Ok(zrow.map_or(0, |z| sh.fill_depth(row, z, s, at)))
+    }
+
+    fn moved(&mut self, by: (i32, i32)) {
+        self.origin = (self.origin.0 + by.0, self.origin.1 + by.1);
+        self.at = (self.origin.1 as u32)
+            .wrapping_sub(self.y0)
+            .wrapping_mul(self.width)
+            .wrapping_add(self.origin.0 as u32);
     }
 }
 
@@ -349,9 +380,9 @@ impl<T: DrawTarget<Color = Rgb565>> Out for TargetSink<'_, T> {
         sh: &Sh,
     ) -> Result<u32, T::Error> {
         let (x, y) = ((s.x0 + self.origin.0) as u32, (s.y + self.origin.1) as u32);
-        let d = s.step;
+        let d = s.step();
         if !D::ENABLED {
-            let mut a = s.start;
+            let mut a = s.start();
             let mut px = x as i32;
             let colours = (0..s.n).map(|_| {
                 let c = sh.pixel(&a, px, y as i32);
@@ -366,7 +397,7 @@ impl<T: DrawTarget<Color = Rgb565>> Out for TargetSink<'_, T> {
         // depths stored) before its pixels are sent.
         let zrow = depth.row(y, x, s.n);
         let n = s.n.min(zrow.len() as u32);
-        let mut a = s.start;
+        let mut a = s.start();
         let (mut k, mut written) = (0u32, 0u32);
         while k < n {
             while k < n && depth16(a[0]) >= zrow[k as usize] as i32 {
@@ -397,5 +428,9 @@ impl<T: DrawTarget<Color = Rgb565>> Out for TargetSink<'_, T> {
             }
         }
         Ok(written)
+    }
+
+    fn moved(&mut self, by: (i32, i32)) {
+        self.origin = (self.origin.0 + by.0, self.origin.1 + by.1);
     }
 }

@@ -35,7 +35,7 @@ use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::normalize::normalize;
-use crate::num::division::{floor_div, recip63};
+use crate::num::division::{floor_div, recip_fast};
 use crate::num::widening::{mul_i32_i16, mul_i32_u32};
 use crate::num::Wide;
 use crate::options::DrawStats;
@@ -249,30 +249,31 @@ impl Rows {
     }
 
     /// The 32-bit form: `x = round(x₁₄·2¹⁶/w₁₄)` and the same for `y`,
-    /// depth `round(z₁₄·2²⁵/w₁₄)`, each from one product with `r =
-    /// ⌊2⁶³/d⌋`, `d = w₁₄·2ⁿ ∈ [2³¹, 2³²)` (capped at `2³² − 1`).
+    /// depth `round(z₁₄·2²⁵/w₁₄)` (within one unit), each from one product
+    /// with `r ≈ 2⁶³/d` ([`recip_fast`], a relative `2⁻²⁷`), `d = w₁₄·2ⁿ ∈
+    /// [2³¹, 2³²)`.
     ///
-    /// With `|x₁₄| < w₁₄/4` (the guard band), `xs = x₁₄·2ⁿ` is below
-    /// 2³⁰ and `p = xs·r = xs·2⁶³/d − ε·xs` with `0 ≤ ε < 2`: `p/2⁴⁷` is
-    /// the quotient within `2³⁰·2/2⁴⁷ = 2⁻¹⁶`. Where its fraction lies
-    /// within 2·2⁻¹⁶ of a half, the rounding is taken from the exact
-    /// division. For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹`
-    /// (`n ≥ 1` as `w₁₄ < 2³¹`); it is not snapped, and its rounding is
-    /// the estimate's.
+    /// With `|x₁₄| < w₁₄/4` (the guard band), `xs = x₁₄·2ⁿ` is below 2³⁰
+    /// and `p = xs·r` is `2⁴⁷` times the quotient `Q` within a relative
+    /// `2⁻²⁷`: `|Q| < 2¹⁴`, so within `2⁻¹³` of it, and within `|Q|·2⁻¹¹`
+    /// units of 2⁻¹⁶ ([`near_half`]). Where the estimate's fraction lies
+    /// that close to a half, the rounding is taken from the exact division.
+    /// For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹` (`n ≥ 1` as
+    /// `w₁₄ < 2³¹`); it is not snapped, and its rounding is the
+    /// estimate's.
     #[inline(always)]
     fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
         let [x14, y14, z14, w14] = self.r.map(|r| r.fourteen(q));
         let n = platform::leading_zeros(w14 as u32);
         let d = (w14 as u32) << n;
-        let r = recip63(d).min(u32::MAX as u64) as u32;
+        let r = recip_fast(d);
         let snap = |v: i32| {
             let p = mul_i32_u32(v << n, r);
-            // The 16 bits below the unit: within 2 of a half, ask the
-            // division.
-            if ((p >> 31) as u32 & 0xFFFF).wrapping_sub(0x8000 - 2) <= 4 {
+            let q = ((p + (1 << 46)) >> 47) as i32;
+            if near_half(p, q) {
                 return exact_round(v, w14);
             }
-            ((p + (1 << 46)) >> 47) as i32
+            q
         };
         let zp = mul_i32_u32(z14 << (n - 1), r);
         [snap(x14), snap(y14), ((zp + (1 << 36)) >> 37) as i32]
@@ -290,7 +291,7 @@ impl Rows {
             return None;
         }
         let n = platform::leading_zeros(w14 as u32);
-        let r = recip63((w14 as u32) << n).min(u32::MAX as u64) as u32;
+        let r = recip_fast((w14 as u32) << n);
         Some([x14, y14].map(|v| mul_i32_u32(v << n, r) >> 35))
     }
 
@@ -311,6 +312,16 @@ impl Rows {
         let inside = |a: i64| a.abs() <= limit;
         (inside(x) && inside(y) && z.abs() <= 1 << 30).then_some([x as i32, y as i32, z as i32])
     }
+}
+
+/// Whether the estimate `p = Q·2⁴⁷` (rounded to `q`) may lie on the other
+/// side of a rounding's half than `Q`: its 16 bits below the unit within
+/// `|q|/2¹¹ + 3` of `2¹⁵` (the estimate's error, `|Q|·2⁻¹¹` units, and one
+/// for the truncation).
+#[inline(always)]
+fn near_half(p: i64, q: i32) -> bool {
+    let f = ((p >> 31) as u32 & 0xFFFF) as i32 - 0x8000;
+    f.unsigned_abs() <= (q.unsigned_abs() >> 11) + 3
 }
 
 /// `round(x·2¹⁶/w)` exactly, half up (`|x| < 2³¹`, `w > 0`).

@@ -15,8 +15,9 @@
 //! # Planes
 //! Attribute `k` at pixel `(c, r)` is `at[k] + gx[k]·c + gy[k]·(r − r₀)`
 //! in wrapping `i32` arithmetic (`src/setup.rs` says why that is exact), so
-//! a row's value is the same whether it was stepped to or computed, in a
-//! band or in the whole frame.
+//! a pixel's value is the same whether it was stepped to or computed, in a
+//! band or in the whole frame. A span carries the planes, not its start:
+//! the span loop computes it (`src/span.rs`).
 
 use crate::num::division::Divisor;
 
@@ -68,9 +69,30 @@ impl Edge {
     }
 }
 
-/// A set-up triangle ready to walk: its rows, edges and planes.
+/// A triangle's attribute planes: attribute `k` at pixel `(c, r)` is
+/// `at[k] + gx[k]·c + gy[k]·(r − r₀)` (wrapping), `r₀` the walk's first
+/// row. (`repr(C)`: the span loops in assembly read it, `src/platform.rs`.)
+#[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Walk<const N: usize> {
+pub(crate) struct Planes<const N: usize> {
+    pub(crate) at: [i32; N],
+    pub(crate) gx: [i32; N],
+    pub(crate) gy: [i32; N],
+}
+
+impl<const N: usize> Default for Planes<N> {
+    fn default() -> Self {
+        Planes {
+            at: [0; N],
+            gx: [0; N],
+            gy: [0; N],
+        }
+    }
+}
+
+/// A set-up triangle ready to walk: its rows and edges.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Walk {
     /// The first and last rows drawn.
     pub(crate) rows: (i32, i32),
     /// The columns drawn.
@@ -85,36 +107,55 @@ pub(crate) struct Walk<const N: usize> {
     /// takes over (`i32::MAX`: never).
     pub(crate) switch: i32,
     pub(crate) lower: ((i32, i32), (i32, i32)),
-    /// The planes at column 0 of the first row, and their steps.
-    pub(crate) at: [i32; N],
-    pub(crate) gx: [i32; N],
-    pub(crate) gy: [i32; N],
 }
 
 /// A span: row `y`, columns `x0 ..= x0 + n − 1` (from the set-up's
-/// origin), the planes at its first pixel and their step per pixel.
+/// origin), `dy` rows below the walk's first, on `planes`.
 #[derive(Clone, Copy)]
 pub(crate) struct Span<'a, const N: usize> {
     pub(crate) y: i32,
     pub(crate) x0: i32,
     pub(crate) n: u32,
-    pub(crate) start: [i32; N],
-    pub(crate) step: &'a [i32; N],
+    pub(crate) dy: i32,
+    pub(crate) planes: &'a Planes<N>,
 }
 
-impl<const N: usize> Walk<N> {
-    /// Calls `span` for each non-empty span, top to bottom, until it
-    /// fails.
+impl<const N: usize> Span<'_, N> {
+    /// The planes at the span's first pixel.
     #[inline(always)]
-    pub(crate) fn run<E>(self, mut span: impl FnMut(&Span<N>) -> Result<(), E>) -> Result<(), E> {
+    pub(crate) fn start(&self) -> [i32; N] {
+        let p = self.planes;
+        core::array::from_fn(|k| {
+            p.at[k]
+                .wrapping_add(p.gx[k].wrapping_mul(self.x0))
+                .wrapping_add(p.gy[k].wrapping_mul(self.dy))
+        })
+    }
+
+    /// The planes' step from a pixel to the next.
+    #[inline(always)]
+    pub(crate) fn step(&self) -> &[i32; N] {
+        &self.planes.gx
+    }
+}
+
+impl Walk {
+    /// Calls `span` for each non-empty span on `planes`, top to bottom,
+    /// until it fails.
+    #[inline(always)]
+    pub(crate) fn run<const N: usize, E>(
+        self,
+        planes: &Planes<N>,
+        mut span: impl FnMut(&Span<N>) -> Result<(), E>,
+    ) -> Result<(), E> {
         let (mut left, mut right) = if self.long_left {
             (self.long, self.short)
         } else {
             (self.short, self.long)
         };
-        let mut row = self.at;
         let (c0, c1) = self.cols;
-        for y in self.rows.0..=self.rows.1 {
+        let (first, last) = self.rows;
+        for y in first..=last {
             if y == self.switch {
                 let e = Edge::new(self.lower.0, self.lower.1, 16 * y + 8);
                 if self.long_left {
@@ -126,20 +167,13 @@ impl<const N: usize> Walk<N> {
             let lo = left.q.max(c0);
             let hi = (right.q - 1).min(c1);
             if lo <= hi {
-                let mut start = row;
-                for (s, g) in start.iter_mut().zip(&self.gx) {
-                    *s = s.wrapping_add(g.wrapping_mul(lo));
-                }
                 span(&Span {
                     y,
                     x0: lo,
                     n: (hi - lo + 1) as u32,
-                    start,
-                    step: &self.gx,
+                    dy: y - first,
+                    planes,
                 })?;
-            }
-            for (r, g) in row.iter_mut().zip(&self.gy) {
-                *r = r.wrapping_add(*g);
             }
             left.advance();
             right.advance();

@@ -142,13 +142,13 @@ impl Divisor {
     }
 }
 
-/// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁶` (`k = 0..=32`), floored; the
-/// first (2³²) capped to `u32::MAX`. 132 bytes, computed by the compiler.
-const RECIP_NODES: [u32; 33] = {
-    let mut t = [0u32; 33];
+/// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁵` (`k = 0..=64`), floored; the
+/// first (2³²) capped to `u32::MAX`. 260 bytes, computed by the compiler.
+const RECIP_NODES: [u32; 65] = {
+    let mut t = [0u32; 65];
     let mut k = 0;
-    while k < 33 {
-        let y = (1u64 << 63) / ((1u64 << 31) + ((k as u64) << 26));
+    while k < 65 {
+        let y = (1u64 << 63) / ((1u64 << 31) + ((k as u64) << 25));
         t[k] = if y > u32::MAX as u64 {
             u32::MAX
         } else {
@@ -190,6 +190,29 @@ pub(crate) fn recip63(d: u32) -> u64 {
     }
 }
 
+/// `2⁶³/d` within a relative `2⁻²⁷`, for `d ∈ [2³¹, 2³²)`: the chord
+/// between the two [`RECIP_NODES`] around `d` (within `Y·2⁻¹⁴`, `Y =
+/// 2⁶³/d`: a relative `(Δd/d)²/4` for `Y` convex, `Δd/d ≤ 2⁻⁶`), then one
+/// Newton step, `y ← y + 2·⌊y·e/2³²⌋` with `e = 2³¹ − ⌊d·y/2³²⌋` (the error
+/// squared, `2⁻²⁸`, plus a few units for the floors).
+/// Exact 32 × 32 → 64-bit products only, so the value is the same on every
+/// core; cheaper than [`recip63`] where a caller needs no exact quotient
+/// (the vertex stage, whose roundings near a half it resolves exactly).
+#[inline(always)]
+pub(crate) fn recip_fast(d: u32) -> u32 {
+    debug_assert!(d >= 1 << 31);
+    let y = chord(d);
+    let e = (1u32 << 31).wrapping_sub((mul_u32(d, y) >> 32) as u32) as i32;
+    // |e| ≤ 2^18, so the step is at most 2^19, and y ≥ 2^31 − 2^19; near d =
+    // 2^31, where Y reaches 2^32, the sum is capped.
+    let step = 2 * (mul_u32(y, e.unsigned_abs()) >> 32) as u32;
+    if e < 0 {
+        y - step
+    } else {
+        y.saturating_add(step)
+    }
+}
+
 /// [`recip63`] as a long division in two 16-bit digits, each from one
 /// 32-bit division by the divisor's high half `v₁ = ⌊d/2¹⁶⌋ ≥ 2¹⁵` and
 /// corrected down by the low half `v₀` (Knuth's algorithm D, base 2¹⁶).
@@ -226,11 +249,21 @@ fn recip63_by_digits(d: u32) -> u64 {
     ((q1 as u64) << 16) | q0 as u64
 }
 
+/// `2⁶³/d` from the chord between the two [`RECIP_NODES`] around `d ∈
+/// [2³¹, 2³²)`: within `Y·2⁻¹⁴` (see [`recip_fast`]).
+#[inline(always)]
+fn chord(d: u32) -> u32 {
+    let x = d - (1 << 31);
+    let k = (x >> 25) as usize & 63;
+    let frac = (x >> 9) & 0xFFFF;
+    let (t0, t1) = (RECIP_NODES[k], RECIP_NODES[k + 1]);
+    // t0 − t1 < 2^32/65 < 2^26: the product is below 2^32.
+    t0 - ((((t0 - t1) >> 10) * frac) >> 6)
+}
+
 /// [`recip63`] without a division; `Y = 2⁶³/d`.
 ///
-/// 1. Seed: the chord between the two [`RECIP_NODES`] around `d`. `Y` is
-///    convex in `d`, so the chord's error is at most `(2⁻⁶)²/8 · Y''`,
-///    below `Y·2⁻¹¹`.
+/// 1. Seed: the [`chord`], within `Y·2⁻¹⁴`.
 /// 2. A Newton step in 32 bits: with `y = Y·(1 − ε)`,
 ///    `e = 2³¹ − ⌊d·y/2³²⌋ ≈ 2³¹·ε` and `y ← y + 2·⌊y·e/2³²⌋ = Y·(1 − ε²)`,
 ///    off by at most 8 units for the truncated products: `|Y − y| < 2¹¹`.
@@ -245,13 +278,8 @@ fn recip63_newton(d: u32) -> u64 {
         // Y = 2^32, which the 32-bit operands below cannot hold.
         return 1 << 32;
     }
-    let x = d - (1 << 31);
-    let k = (x >> 26) as usize;
-    let frac = (x >> 10) & 0xFFFF;
-    let (t0, t1) = (RECIP_NODES[k], RECIP_NODES[k + 1]);
-    // t0 − t1 < 2^32/33 < 2^27: the product is below 2^32.
-    let y = t0 - ((((t0 - t1) >> 11) * frac) >> 5);
-    // |e| ≤ 2^21 (ε ≤ 2^-11 and the products' truncation).
+    let y = chord(d);
+    // |e| ≤ 2^18 (ε ≤ 2^-14 and the products' truncation).
     let e = (1u32 << 31).wrapping_sub(mul_hi_approx(d, y)) as i32;
     let step = 2 * mul_hi_approx(y, e.unsigned_abs()) as i64;
     // Y < 2^32 − 1 for d > 2^31: the cap keeps y within 2^11 of Y.
@@ -279,7 +307,9 @@ fn recip63_newton(d: u32) -> u64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, Divisor};
+    use super::{
+        floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, recip_fast, Divisor,
+    };
     use crate::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
@@ -365,6 +395,39 @@ mod tests {
                     assert_eq!(v.ceil(n) as i64, -((-(n as i64)).div_euclid(d as i64)));
                 }
             }
+        }
+    }
+
+    /// The fast reciprocal is within its relative bound, `2⁻²⁷`, at the
+    /// ends, at every power of two's neighbours, at the nodes and at random
+    /// divisors (all of them: `recip_fast_exhaustive`).
+    #[test]
+    fn fast_reciprocal_is_within_its_bound() {
+        let mut ds: Vec<u32> = vec![1 << 31, (1 << 31) + 1, u32::MAX, u32::MAX - 1];
+        for k in 0..65u64 {
+            let node = ((1u64 << 31) + (k << 25)).min(u32::MAX as u64) as u32;
+            ds.extend([node.saturating_sub(1), node, node.saturating_add(1)]);
+        }
+        let mut next = xorshift(0x51de_5eed_dead_beef);
+        ds.extend((0..500_000).map(|_| (next() as u32) | 1 << 31));
+        for d in ds.into_iter().filter(|&d| d >= 1 << 31) {
+            check_fast(d);
+        }
+    }
+
+    fn check_fast(d: u32) {
+        let exact = (1u128 << 63) as f64 / d as f64;
+        let got = recip_fast(d) as f64;
+        assert!((got - exact).abs() <= exact / (1u64 << 27) as f64, "{d}: {got} {exact}");
+    }
+
+    /// [`recip_fast`] over every divisor: run with
+    /// `cargo test --release --lib -- --ignored recip_fast_exhaustive`.
+    #[test]
+    #[ignore = "2^31 divisors (CI runs it)"]
+    fn recip_fast_exhaustive() {
+        for d in (1u32 << 31)..=u32::MAX {
+            check_fast(d);
         }
     }
 

@@ -7,6 +7,7 @@
 //! values, out to the guard band and the attributes' bound.
 
 use crate::setup::{area, set_up, Rect, Vtx, ATTR};
+use crate::walk::Planes;
 use crate::vertex::GUARD;
 use proptest::prelude::*;
 
@@ -59,8 +60,9 @@ fn kernel(v: [(i64, i64); 3], size: i64, rows: (i64, i64)) -> Vec<(i64, i64)> {
         r0: rows.0 as i32,
         r1: rows.1 as i32,
     };
-    if let Some(walk) = set_up(&t, a, 0, &rect) {
-        walk.run(|s| {
+    let mut planes = Planes::default();
+    if let Some(walk) = set_up(&t, a, 0, &rect, &mut planes) {
+        walk.run(&planes, |s| {
             out.extend((s.x0..s.x0 + s.n as i32).map(|x| (x as i64, s.y as i64)));
             Ok::<(), ()>(())
         })
@@ -138,8 +140,8 @@ proptest! {
 
     /// At the limits — vertices anywhere in the guard band, attributes to
     /// ±`ATTR` — every covered pixel's plane lies within the set-up's
-    /// bound of the exact plane, `(½ + (|d₁| + |d₂|)·2⁻²⁵)·(|c − c₀| + |r −
-    /// r₀|) + 2` units (`src/setup.rs`), so within that of the vertices'
+    /// bound of the exact plane, `(½ + (|d₁| + |d₂|)·2⁻²⁴)·(|c − c₀| + |r −
+    /// r₀| + 1) + 1` units (`src/setup.rs`), so within that of the vertices'
     /// range; the same in a band of the rows.
     #[test]
     fn planes_stay_near_the_exact_one(
@@ -152,7 +154,7 @@ proptest! {
         prop_assume!(ar != 0);
         let rect = Rect { c0: -48, c1: 47, r0: -48, r1: 47 };
         let d = [v[1].a[0] - v[0].a[0], v[2].a[0] - v[0].a[0]].map(|d| d.unsigned_abs() as f64);
-        let rate = 0.5 + (d[0] + d[1]) / (1u64 << 25) as f64;
+        let rate = 0.5 + (d[0] + d[1]) / (1u64 << 24) as f64;
         let exact = |x: f64, y: f64| {
             let f = v.map(|v| (v.x as f64, v.y as f64, v.a[0] as f64));
             let e = |a: (f64, f64, f64), b: (f64, f64, f64)| (b.0 - a.0) * (y - a.1) - (b.1 - a.1) * (x - a.0);
@@ -163,13 +165,14 @@ proptest! {
         let mut whole = Vec::new();
         for rows in [(rect.r0, rect.r1), (band, band + 3)] {
             let mut got = Vec::new();
-            if let Some(w) = set_up(&v, ar, 0, &Rect { r0: rows.0, r1: rows.1, ..rect }) {
-                w.run(|s| {
+            let mut planes = Planes::default();
+            if let Some(w) = set_up(&v, ar, 0, &Rect { r0: rows.0, r1: rows.1, ..rect }, &mut planes) {
+                w.run(&planes, |s| {
                     for k in 0..s.n as i32 {
                         let (x, y) = (s.x0 + k, s.y);
-                        let value = s.start[0].wrapping_add(s.step[0].wrapping_mul(k));
+                        let value = s.start()[0].wrapping_add(s.step()[0].wrapping_mul(k));
                         let e = exact((16 * x + 8) as f64, (16 * y + 8) as f64);
-                        let bound = rate * ((x - c0).abs() + (y - r0).abs()) as f64 + 2.0;
+                        let bound = rate * ((x - c0).abs() + (y - r0).abs() + 1) as f64 + 1.0;
                         prop_assert!((value as f64 - e).abs() <= bound, "{v:?} at ({x}, {y}): {value} vs {e}");
                         got.push((x, y, value));
                     }

@@ -12,7 +12,7 @@ use proptest::prelude::*;
 
 use crate::depth::{DepthBuffer, DepthTest, NoDepth};
 use crate::span::{Gouraud, Memory, Out, TargetSink};
-use crate::walk::Span;
+use crate::walk::{Planes, Span};
 
 /// A Gouraud span's start and step: depth and three channels, each inside
 /// its field by the planes' margin over `n` pixels.
@@ -41,12 +41,18 @@ fn span() -> impl Strategy<Value = ([i32; 4], [i32; 4], u32)> {
 /// beforehand (`None`: no depth test), and returns both targets' pixels
 /// and depths.
 fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 4] {
+    // The planes at column 0 of row 0, so that the span's start is `s`.
+    let planes = Planes {
+        at: core::array::from_fn(|k| s[k].wrapping_sub(d[k].wrapping_mul(2))),
+        gx: d,
+        gy: [0; 4],
+    };
     let span = Span {
         y: 3,
         x0: 2,
         n,
-        start: s,
-        step: &d,
+        dy: 0,
+        planes: &planes,
     };
     let mut px = vec![0u16; 48 * 8];
     let (mut z1, mut z2) = (vec![0u16; 48 * 8], vec![0u16; 48 * 8]);
