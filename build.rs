@@ -11,7 +11,12 @@
 //! instruction: there [`division`]'s shared-divisor floors take a
 //! reciprocal instead of a library call.
 //!
-//! The kernel reads both only through [`platform`].
+//! Sets `fixshade_thumb1` (ARMv6-M, ARMv8-M Baseline) or `fixshade_thumb2`
+//! (ARMv7-M, ARMv8-M Mainline) for the Cortex-M cores, whose span loops
+//! [`platform`] writes in assembly (stable Rust's `cfg` has no
+//! `target_feature` that tells them apart).
+//!
+//! The kernel reads them only through [`platform`].
 //!
 //! [`widening`]: src/num/widening.rs
 //! [`division`]: src/num/division.rs
@@ -20,10 +25,16 @@ fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_mul64)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_soft_div32)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_explicit_draw)");
+    println!("cargo:rustc-check-cfg=cfg(fixshade_thumb1)");
+    println!("cargo:rustc-check-cfg=cfg(fixshade_thumb2)");
     println!("cargo:rerun-if-changed=build.rs");
     let target = std::env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
         println!("cargo:rustc-cfg=fixshade_soft_mul64");
+        println!("cargo:rustc-cfg=fixshade_thumb1");
+    }
+    if target.starts_with("thumbv7") || target.starts_with("thumbv8m.main") {
+        println!("cargo:rustc-cfg=fixshade_thumb2");
     }
     if target.starts_with("thumbv6m") {
         println!("cargo:rustc-cfg=fixshade_soft_div32");

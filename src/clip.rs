@@ -32,7 +32,7 @@ use crate::num::division::floor_div;
 use crate::num::Wide;
 use crate::options::{DrawStats, ShadingMode};
 use crate::setup::{Rect, ATTR};
-use crate::shade::{Corners, Frame, Mix};
+use crate::shade::{Corners, Frame};
 use crate::span::Out;
 use crate::vertex::GUARD;
 
@@ -52,23 +52,6 @@ struct Corner {
     h: [i64; 4],
     w: [i32; 3],
     vertex: Option<usize>,
-}
-
-/// The polygon's corners' attribute weights.
-struct Weights<'a>(&'a [[i32; 3]]);
-
-impl Mix for Weights<'_> {
-    #[inline]
-    fn mix<const N: usize>(&self, k: usize, a: &[[i32; N]; 3]) -> [i32; N] {
-        let w = self.0.get(k).copied().unwrap_or([1 << 30, 0, 0]);
-        let mut out = [0i32; N];
-        for (i, o) in out.iter_mut().enumerate() {
-            // |a| < 2²⁶, w ≤ 2³⁰: each product below 2⁵⁶.
-            let s: i64 = (0..3).map(|j| w[j] as i64 * a[j][i] as i64).sum();
-            *o = ((s + (1 << 29)) >> 30) as i32;
-        }
-        out
-    }
 }
 
 /// A plane `a·X + b·Y + c·Z + d·W ≥ 0` of the rows (true values), as
@@ -365,15 +348,19 @@ where
     if count == 0 {
         return Ok(());
     }
-    f.pieces::<M, O, D, _>(
+    // The pieces in the tile's coordinates, the output moved to match.
+    out.moved(centre);
+    let res = f.pieces::<M, O, D>(
         c,
         &at[..poly.len()],
-        Weights(&weights[..poly.len()]),
+        &weights[..poly.len()],
         &tris[..count],
         facing,
-        (&rect, centre),
+        &rect,
         out,
         depth,
         stats,
-    )
+    );
+    out.moved((-centre.0, -centre.1));
+    res
 }

@@ -13,7 +13,7 @@
 //! the test suite on the host with `--cfg fixshade_soft_mul64 --cfg
 //! fixshade_soft_div32`); only the instructions differ.
 
-use crate::walk::Planes;
+use crate::walk::{Planes, Row};
 
 /// The core has no 32 × 32 → 64-bit multiply instruction (ARMv6-M: the
 /// Cortex-M0 and M0+, the RP2040's core; ARMv8-M Baseline: the Cortex-M23),
@@ -109,239 +109,345 @@ pub(crate) fn pack_planes(r: i32, g: i32, b: i32) -> u16 {
     }
 }
 
-/// A Gouraud span through the depth test, written in place: `row` and
-/// `zrow` the span's pixels and stored depths (the same length), on the
-/// depth and colour `planes` (`[z, r, g, b]`, `src/walk.rs`) from column
-/// `x0`, `dy` rows below their first; returns the pixels written. Each
-/// pixel's depth is `clamp(z >> 12, 0, 65535)`; it is written, with its
-/// colour ([`pack_planes`]), where that is below the stored one.
-///
-/// On Cortex-M cores the span's start (`at + gx·x0 + gy·dy`, wrapping) and
-/// loop are assembly: on ARMv7-M (and ARMv8-M Mainline) 17 instructions a
-/// written pixel (`usat` clamps, the colour in five), on ARMv6-M 22 (a
-/// depth above 65535 fails the unsigned comparison as its clamp would, a
-/// negative one becomes 0). In Rust, LLVM keeps the four planes, their
-/// steps and two pointers in too few registers and reloads steps from the
-/// stack at every pixel (24 and 41 instructions). The frame pointer `r7`
-/// and `r6`, which `asm!` may not name, are saved and used. Elsewhere the
-/// loop in Rust, the same values.
-#[inline(always)]
-pub(crate) fn gouraud_depth(
-    row: &mut [u16],
-    zrow: &mut [u16],
-    planes: &Planes<4>,
-    x0: i32,
-    dy: i32,
-) -> u32 {
-    let n = row.len().min(zrow.len());
-    if n == 0 {
-        return 0;
-    }
-    #[cfg(fixshade_thumb2)]
-    {
-        let failed: u32;
-        // SAFETY: `row` and `zrow` hold `n ≥ 1` pixels each, and the loop
-        // reads and writes exactly those; `planes` is twelve words
-        // (`repr(C)`). r6 and r7 are pushed and popped around their use; sp
-        // is restored.
-        unsafe {
-            core::arch::asm!(
-                "push {{r6, r7}}",
-                "ldr r7, [r3, #16]",
-                "ldr r8, [r3, #20]",
-                "ldr r9, [r3, #24]",
-                "ldr r10, [r3, #28]",
-                "ldr r6, [r3, #12]",
-                "mla r6, r10, r4, r6",
-                "ldr r11, [r3, #44]",
-                "mla r6, r11, r5, r6",
-                "ldr r12, [r3]",
-                "mla r12, r7, r4, r12",
-                "ldr r11, [r3, #32]",
-                "mla r12, r11, r5, r12",
-                "ldr lr, [r3, #4]",
-                "mla lr, r8, r4, lr",
-                "ldr r11, [r3, #36]",
-                "mla lr, r11, r5, lr",
-                "ldr r11, [r3, #40]",
-                "mul r11, r11, r5",
-                "mla r5, r9, r4, r11",
-                "ldr r11, [r3, #8]",
-                "add r5, r11",
-                "mov r4, lr",
-                "mov r3, r12",
-                "movs r11, #0",
-                "2:",
-                "ldrh r12, [r0]",
-                "usat lr, #16, r3, asr #12",
-                "cmp lr, r12",
-                "bhs 4f",
-                "strh lr, [r0], #2",
-                "lsrs r12, r5, #20",
-                "lsrs lr, r4, #20",
-                "orr lr, r12, lr, lsl #6",
-                "lsrs r12, r6, #20",
-                "orr lr, r12, lr, lsl #5",
-                "strh lr, [r1], #2",
-                "3:",
-                "add r3, r7",
-                "add r4, r8",
-                "add r5, r9",
-                "add r6, r10",
-                "subs r2, #1",
-                "bne 2b",
-                "b 5f",
-                "4:",
-                "adds r0, #2",
-                "adds r1, #2",
-                "adds r11, #1",
-                "b 3b",
-                "5:",
-                "pop {{r6, r7}}",
-                inout("r0") zrow.as_mut_ptr() => _,
-                inout("r1") row.as_mut_ptr() => _,
-                inout("r2") n => _,
-                inout("r3") planes as *const Planes<4> => _,
-                inout("r4") x0 => _,
-                inout("r5") dy => _,
-                out("r8") _,
-                out("r9") _,
-                out("r10") _,
-                out("r11") failed,
-                out("r12") _,
-                out("lr") _,
-            );
+/// A table of a triangle's rows ready for a row loop: the planes at column
+/// 0 of the current row, stepped by `gy` a row and `gx` a pixel, the rows'
+/// spans, and where each row's column 0 lies in the colour and depth
+/// stores (the same index in both). `repr(C)`: the loops in assembly read
+/// and update it (offsets 0, 16, 32, 48, 52, 56, 60, 64, 68, 72).
+#[repr(C)]
+pub(crate) struct Rows<'a> {
+    rowv: [i32; 4],
+    gy: [i32; 4],
+    gx: [i32; 4],
+    table: *const Row,
+    count: u32,
+    cbase: *mut u16,
+    zbase: *mut u16,
+    stride: u32,
+    covered: u32,
+    failed: u32,
+    _stores: core::marker::PhantomData<(&'a [Row], &'a mut [u16])>,
+}
+
+impl<'a> Rows<'a> {
+    /// The rows of `table` (at least one), the first `dy` rows below the
+    /// `planes`' first (the first four attributes taken), in `buf` and
+    /// `zbuf`, row-major `width` pixels a row, column 0 of the first row at
+    /// index `first`.
+    ///
+    /// The caller has checked that every row's span lies in both stores:
+    /// the loops write exactly those pixels.
+    pub(crate) fn new<const N: usize>(
+        planes: &Planes<N>,
+        dy: i32,
+        table: &'a [Row],
+        buf: &'a mut [u16],
+        zbuf: &'a mut [u16],
+        first: i64,
+        width: u32,
+    ) -> Self {
+        let four = |a: &[i32; N]| core::array::from_fn(|k| if k < N { a[k] } else { 0 });
+        let (at, gx, gy) = (four(&planes.at), four(&planes.gx), four(&planes.gy));
+        Rows {
+            rowv: core::array::from_fn(|k: usize| at[k].wrapping_add(gy[k].wrapping_mul(dy))),
+            gy,
+            gx,
+            table: table.as_ptr(),
+            count: table.len() as u32,
+            cbase: buf.as_mut_ptr().wrapping_offset(first as isize),
+            zbase: zbuf.as_mut_ptr().wrapping_offset(first as isize),
+            stride: 2 * width,
+            covered: 0,
+            failed: 0,
+            _stores: core::marker::PhantomData,
         }
-        n as u32 - failed
+    }
+}
+
+/// The Gouraud rows of `run` through the depth test: each pixel's depth is
+/// `clamp(z >> 12, 0, 65535)`, written with the pixel's colour
+/// ([`pack_planes`]) where it is below the stored one; returns the pixels
+/// written.
+///
+/// On Cortex-M cores the whole table is one loop of assembly (17
+/// instructions a written pixel on ARMv7-M, `usat` clamping and the colour
+/// in five; 22 on ARMv6-M, where a depth above 65535 fails the unsigned
+/// comparison as its clamp would and a negative one becomes 0), the four
+/// steps held in registers from row to row and each row's start made
+/// from the row's planes with four multiply-accumulates. In Rust, LLVM
+/// keeps the four planes, their steps and two pointers in too few
+/// registers (steps reloaded at every pixel: 24 and 41 instructions), and
+/// a row's span cost some 120 instructions of spills around it. The frame
+/// pointer `r7` and `r6`, which `asm!` may not name, are saved and used.
+/// Elsewhere the same loop in Rust.
+#[inline(never)]
+pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
+    #[cfg(fixshade_thumb2)]
+    // SAFETY: `run`'s table has `count ≥ 1` rows, each span within both
+    // stores (`Rows::new`'s contract); `run` is read and updated at the
+    // offsets of its `repr(C)` layout. r6 and r7 are pushed and popped
+    // around their use; sp is restored.
+    unsafe {
+        core::arch::asm!(
+            "push {{r6, r7}}",
+            "mov r7, r0",
+            "ldr r8, [r7, #32]",
+            "ldr r9, [r7, #36]",
+            "ldr r10, [r7, #40]",
+            "ldr r11, [r7, #44]",
+            "ldm r7, {{r3, r4, r5, r6}}",
+            "1:",
+            "ldr r12, [r7, #48]",
+            "ldm r12!, {{r0, r1}}",
+            "str r12, [r7, #48]",
+            "cmp r1, #0",
+            "ble 6f",
+            "ldr r12, [r7, #68]",
+            "add r12, r1",
+            "str r12, [r7, #68]",
+            "push {{r3, r4, r5, r6}}",
+            "mla r3, r8, r0, r3",
+            "mla r4, r9, r0, r4",
+            "mla r5, r10, r0, r5",
+            "mla r6, r11, r0, r6",
+            "ldr r2, [r7, #56]",
+            "add r2, r2, r0, lsl #1",
+            "ldr r12, [r7, #60]",
+            "add r0, r12, r0, lsl #1",
+            "2:",
+            "ldrh r12, [r0]",
+            "usat lr, #16, r3, asr #12",
+            "cmp lr, r12",
+            "bhs 4f",
+            "strh lr, [r0], #2",
+            "lsrs r12, r5, #20",
+            "lsrs lr, r4, #20",
+            "orr lr, r12, lr, lsl #6",
+            "lsrs r12, r6, #20",
+            "orr lr, r12, lr, lsl #5",
+            "strh lr, [r2], #2",
+            "3:",
+            "add r3, r8",
+            "add r4, r9",
+            "add r5, r10",
+            "add r6, r11",
+            "subs r1, #1",
+            "bne 2b",
+            "pop {{r3, r4, r5, r6}}",
+            "6:",
+            "add r12, r7, #16",
+            "ldm r12, {{r0, r1, r2, lr}}",
+            "add r3, r0",
+            "add r4, r1",
+            "add r5, r2",
+            "add r6, lr",
+            "add r12, r7, #56",
+            "ldm r12, {{r0, r1, r2}}",
+            "add r0, r2",
+            "add r1, r2",
+            "stm r12, {{r0, r1}}",
+            "ldr r0, [r7, #52]",
+            "subs r0, #1",
+            "str r0, [r7, #52]",
+            "bne 1b",
+            "b 9f",
+            "4:",
+            "adds r0, #2",
+            "adds r2, #2",
+            "ldr r12, [r7, #72]",
+            "adds r12, #1",
+            "str r12, [r7, #72]",
+            "b 3b",
+            "9:",
+            "stm r7, {{r3, r4, r5, r6}}",
+            "pop {{r6, r7}}",
+            inout("r0") run as *mut Rows => _,
+            out("r1") _,
+            out("r2") _,
+            out("r3") _,
+            out("r4") _,
+            out("r5") _,
+            out("r8") _,
+            out("r9") _,
+            out("r10") _,
+            out("r11") _,
+            out("r12") _,
+            out("lr") _,
+        );
     }
     #[cfg(fixshade_thumb1)]
-    {
-        let failed: u32;
-        // SAFETY: as above; r12 holds the row's end, lr the failures.
-        unsafe {
-            core::arch::asm!(
-                "push {{r6, r7}}",
-                "lsls r5, r5, #1",
-                "adds r5, r5, r1",
-                "mov r12, r5",
-                "ldr r6, [r2, #16]",
-                "mov r8, r6",
-                "ldr r6, [r2, #20]",
-                "mov r9, r6",
-                "ldr r6, [r2, #24]",
-                "mov r10, r6",
-                "ldr r6, [r2, #28]",
-                "mov r11, r6",
-                "ldr r5, [r2, #28]",
-                "muls r5, r3, r5",
-                "ldr r6, [r2, #44]",
-                "muls r6, r4, r6",
-                "adds r5, r5, r6",
-                "ldr r6, [r2, #12]",
-                "adds r5, r5, r6",
-                "ldr r7, [r2, #24]",
-                "muls r7, r3, r7",
-                "ldr r6, [r2, #40]",
-                "muls r6, r4, r6",
-                "adds r7, r7, r6",
-                "ldr r6, [r2, #8]",
-                "adds r7, r7, r6",
-                "ldr r6, [r2, #32]",
-                "muls r6, r4, r6",
-                "mov lr, r6",
-                "ldr r6, [r2, #16]",
-                "muls r6, r3, r6",
-                "add r6, lr",
-                "mov lr, r6",
-                "ldr r6, [r2]",
-                "add r6, lr",
-                "mov lr, r6",
-                "ldr r6, [r2, #36]",
-                "muls r6, r4, r6",
-                "ldr r4, [r2, #20]",
-                "muls r4, r3, r4",
-                "adds r4, r4, r6",
-                "ldr r6, [r2, #4]",
-                "adds r3, r4, r6",
-                "mov r4, r7",
-                "mov r2, lr",
-                "movs r6, #0",
-                "mov lr, r6",
-                "2:",
-                "ldrh r6, [r0]",
-                "asrs r7, r2, #12",
-                "bmi 6f",
-                "7:",
-                "cmp r7, r6",
-                "bhs 4f",
-                "strh r7, [r0]",
-                "lsrs r6, r3, #20",
-                "lsls r6, r6, #11",
-                "lsrs r7, r4, #20",
-                "lsls r7, r7, #5",
-                "orrs r6, r7",
-                "lsrs r7, r5, #20",
-                "orrs r6, r7",
-                "strh r6, [r1]",
-                "3:",
-                "add r2, r8",
-                "add r3, r9",
-                "add r4, r10",
-                "add r5, r11",
-                "adds r0, #2",
-                "adds r1, #2",
-                "cmp r1, r12",
-                "bne 2b",
-                "b 5f",
-                "4:",
-                "mov r6, lr",
-                "adds r6, #1",
-                "mov lr, r6",
-                "b 3b",
-                "6:",
-                "movs r7, #0",
-                "b 7b",
-                "5:",
-                "mov r2, lr",
-                "pop {{r6, r7}}",
-                inout("r0") zrow.as_mut_ptr() => _,
-                inout("r1") row.as_mut_ptr() => _,
-                inout("r2") planes as *const Planes<4> => failed,
-                inout("r3") x0 => _,
-                inout("r4") dy => _,
-                inout("r5") n => _,
-                out("r8") _,
-                out("r9") _,
-                out("r10") _,
-                out("r11") _,
-                out("r12") _,
-                out("lr") _,
-            );
-        }
-        n as u32 - failed
+    // SAFETY: as above; lr holds `run` through the loop, r12 a row's end.
+    unsafe {
+        core::arch::asm!(
+            "push {{r6, r7}}",
+            "mov lr, r0",
+            "ldr r6, [r0, #32]",
+            "mov r8, r6",
+            "ldr r6, [r0, #36]",
+            "mov r9, r6",
+            "ldr r6, [r0, #40]",
+            "mov r10, r6",
+            "ldr r6, [r0, #44]",
+            "mov r11, r6",
+            "1:",
+            "mov r7, lr",
+            "ldr r6, [r7, #48]",
+            "ldm r6!, {{r0, r1}}",
+            "str r6, [r7, #48]",
+            "cmp r1, #0",
+            "ble 6f",
+            "ldr r6, [r7, #68]",
+            "adds r6, r6, r1",
+            "str r6, [r7, #68]",
+            "ldr r2, [r7, #0]",
+            "mov r6, r8",
+            "muls r6, r0, r6",
+            "adds r2, r2, r6",
+            "ldr r3, [r7, #4]",
+            "mov r6, r9",
+            "muls r6, r0, r6",
+            "adds r3, r3, r6",
+            "ldr r4, [r7, #8]",
+            "mov r6, r10",
+            "muls r6, r0, r6",
+            "adds r4, r4, r6",
+            "ldr r5, [r7, #12]",
+            "mov r6, r11",
+            "muls r6, r0, r6",
+            "adds r5, r5, r6",
+            "lsls r0, r0, #1",
+            "ldr r6, [r7, #56]",
+            "adds r6, r6, r0",
+            "ldr r7, [r7, #60]",
+            "adds r0, r0, r7",
+            "lsls r7, r1, #1",
+            "adds r7, r7, r6",
+            "mov r12, r7",
+            "mov r1, r6",
+            "2:",
+            "ldrh r6, [r0]",
+            "asrs r7, r2, #12",
+            "bmi 8f",
+            "7:",
+            "cmp r7, r6",
+            "bhs 4f",
+            "strh r7, [r0]",
+            "lsrs r6, r3, #20",
+            "lsls r6, r6, #11",
+            "lsrs r7, r4, #20",
+            "lsls r7, r7, #5",
+            "orrs r6, r7",
+            "lsrs r7, r5, #20",
+            "orrs r6, r7",
+            "strh r6, [r1]",
+            "3:",
+            "add r2, r8",
+            "add r3, r9",
+            "add r4, r10",
+            "add r5, r11",
+            "adds r0, #2",
+            "adds r1, #2",
+            "cmp r1, r12",
+            "bne 2b",
+            "6:",
+            "mov r7, lr",
+            "ldr r0, [r7, #0]",
+            "ldr r1, [r7, #16]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #0]",
+            "ldr r0, [r7, #4]",
+            "ldr r1, [r7, #20]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #4]",
+            "ldr r0, [r7, #8]",
+            "ldr r1, [r7, #24]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #8]",
+            "ldr r0, [r7, #12]",
+            "ldr r1, [r7, #28]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #12]",
+            "ldr r0, [r7, #56]",
+            "ldr r1, [r7, #64]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #56]",
+            "ldr r0, [r7, #60]",
+            "adds r0, r0, r1",
+            "str r0, [r7, #60]",
+            "ldr r0, [r7, #52]",
+            "subs r0, #1",
+            "str r0, [r7, #52]",
+            "bne 1b",
+            "b 9f",
+            "4:",
+            "mov r7, lr",
+            "ldr r6, [r7, #72]",
+            "adds r6, #1",
+            "str r6, [r7, #72]",
+            "b 3b",
+            "8:",
+            "movs r7, #0",
+            "b 7b",
+            "9:",
+            "pop {{r6, r7}}",
+            inout("r0") run as *mut Rows => _,
+            out("r1") _,
+            out("r2") _,
+            out("r3") _,
+            out("r4") _,
+            out("r5") _,
+            out("r8") _,
+            out("r9") _,
+            out("r10") _,
+            out("r11") _,
+            out("r12") _,
+            out("lr") _,
+        );
     }
     #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
     {
-        let p = planes;
-        let mut a: [i32; 4] = core::array::from_fn(|k| {
-            p.at[k]
-                .wrapping_add(p.gx[k].wrapping_mul(x0))
-                .wrapping_add(p.gy[k].wrapping_mul(dy))
-        });
-        let mut written = 0;
-        for (px, z) in row[..n].iter_mut().zip(&mut zrow[..n]) {
-            let d16 = (a[0] >> 12).clamp(0, 0xFFFF);
-            if d16 < *z as i32 {
-                *z = d16 as u16;
-                *px = pack_planes(a[1], a[2], a[3]);
-                written += 1;
+        // SAFETY: `Rows::new`'s contract: each row's span lies in both
+        // stores, at `base + x0 ..` for that row's bases.
+        let spans = unsafe { core::slice::from_raw_parts(run.table, run.count as usize) };
+        for r in spans {
+            if r.n > 0 {
+                run.covered += r.n as u32;
+                let (row, zrow) = unsafe {
+                    (
+                        core::slice::from_raw_parts_mut(
+                            run.cbase.wrapping_offset(r.x0 as isize),
+                            r.n as usize,
+                        ),
+                        core::slice::from_raw_parts_mut(
+                            run.zbase.wrapping_offset(r.x0 as isize),
+                            r.n as usize,
+                        ),
+                    )
+                };
+                let mut a: [i32; 4] = core::array::from_fn(|k| {
+                    run.rowv[k].wrapping_add(run.gx[k].wrapping_mul(r.x0))
+                });
+                for (px, z) in row.iter_mut().zip(zrow.iter_mut()) {
+                    let d16 = (a[0] >> 12).clamp(0, 0xFFFF);
+                    if d16 < *z as i32 {
+                        *z = d16 as u16;
+                        *px = pack_planes(a[1], a[2], a[3]);
+                    } else {
+                        run.failed += 1;
+                    }
+                    for (v, s) in a.iter_mut().zip(&run.gx) {
+                        *v = v.wrapping_add(*s);
+                    }
+                }
             }
-            for (v, s) in a.iter_mut().zip(&p.gx) {
+            for (v, s) in run.rowv.iter_mut().zip(&run.gy) {
                 *v = v.wrapping_add(*s);
             }
+            run.cbase = run.cbase.wrapping_add(run.stride as usize / 2);
+            run.zbase = run.zbase.wrapping_add(run.stride as usize / 2);
         }
-        written
     }
+    run.covered - run.failed
 }
 
 /// An optimisation barrier that emits no instruction, for the body of a

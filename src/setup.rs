@@ -29,12 +29,12 @@
 //!
 //! A gradient is `256·N/A` (`A` the doubled area in 1/256 pixel², `N` the
 //! attribute differences' cross product with the sides, below 2⁴²): from
-//! one reciprocal of `|A|` ([`recip63`]) and the barycentric gradients
+//! one reciprocal of `|A|` ([`recip_fast`]) and the barycentric gradients
 //! ([`gradients`]), or, where those do not fit `i32` (a sliver, a steep
 //! plane), from the exact division, kept modulo 2³². Both are functions of
 //! the vertices alone, the same on every core.
 
-use crate::num::division::{floor_div, recip63};
+use crate::num::division::{floor_div, recip_fast};
 use crate::num::widening::{mul_i32, mul_i32_i16, mul_i32_u32};
 use crate::platform;
 use crate::walk::{Edge, Planes, Walk};
@@ -121,12 +121,19 @@ pub(crate) fn set_up<const N: usize>(
     } else {
         Edge::new((m.x, m.y), (b.x, b.y), sy)
     };
+    let long_left = cross < 0;
+    let (left, right) = if long_left {
+        (long, short)
+    } else {
+        (short, long)
+    };
     Some(Walk {
-        rows: (r_top, r_last),
+        y: r_top,
+        last: r_last,
         cols: (rect.c0, rect.c1),
-        long,
-        short,
-        long_left: cross < 0,
+        left,
+        right,
+        long_left,
         // The first row whose sample lies at or below the middle vertex.
         switch: if upper { (m.y + 7) >> 4 } else { i32::MAX },
         lower: ((m.x, m.y), (b.x, b.y)),
@@ -143,13 +150,14 @@ pub(crate) fn set_up<const N: usize>(
 /// doubled area), so an attribute's gradient per pixel in plane units is
 /// `gx = 256·(d₁·dy₂ − d₂·dy₁)/A = d₁·Λ₁ₓ + d₂·Λ₂ₓ` with `Λ = 256·side/A`.
 /// The four `Λ` are kept as `i32` multiples of 2⁻²⁴ (`Λ·2²⁴ =
-/// ⌊side·r/2³¹⁻ⁿ⌋`, `r = ⌊2⁶³/(|A|·2ⁿ)⌋`), so each gradient is two `i32 ×
+/// ⌊side·r/2³¹⁻ⁿ⌋`, `r ≈ 2⁶³/(|A|·2ⁿ)`), so each gradient is two `i32 ×
 /// i32` products summed and shifted by 24: the `Λ` within a unit of 2⁻²⁴
-/// plus 2⁻³¹ of their value, the gradient within `|d₁| + |d₂|` units of
-/// 2⁻²⁴ and 2⁻³⁰ of its terms, plus its rounding's ½. A triangle whose `Λ`
+/// (times `r`'s common relative error, 2⁻²⁷), the gradient within `|d₁| +
+/// |d₂|` units of 2⁻²⁴ plus its rounding's ½. A triangle whose `Λ`
 /// or gradients do not fit (a sliver, a steep plane) takes the exact
-/// quotients ([`steep_gradients`]).
-#[inline(always)]
+/// quotients ([`steep_gradients`]). Out of line: its products get the
+/// registers, not the set-up's other values.
+#[inline(never)]
 fn gradients<const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
@@ -161,7 +169,9 @@ fn gradients<const N: usize>(
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs();
     let n = platform::leading_zeros(a);
-    let r = recip63(a << n).min(u32::MAX as u64) as u32;
+    // Within a relative 2⁻²⁷ (`recip_fast`): a factor common to the four
+    // Λ, so it scales each plane's change across the triangle alone.
+    let r = recip_fast(a << n);
     // Λ·2²⁴ = 256·side·2²⁴/|A| = side·2ⁿ⁺³²·r/2⁶³ = side·r/2³¹⁻ⁿ.
     let sides = [dy2, -dx2, -dy1, dx1];
     let sign = if area < 0 { -1 } else { 1 };

@@ -5,6 +5,8 @@
 //! The lean path (`src/triangle.rs`) draws a triangle as one piece; the
 //! rare path (`src/clip.rs`) draws what clipping leaves of it.
 
+use core::mem::MaybeUninit;
+
 use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 
 use crate::color::Shade;
@@ -19,7 +21,7 @@ use crate::setup::{self, Rect, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
-use crate::walk::{Planes, Span};
+use crate::walk::{Planes, CHUNK};
 
 /// One draw's constants and what it draws into: the vertex stage, the
 /// switches, the pixels drawn.
@@ -58,145 +60,204 @@ pub(crate) fn rect_of(size: (u32, u32)) -> ((i32, i32), Rect) {
 }
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Lights and draws the triangles `tris` (corner indices into
-    /// `corners`: window position and depth attribute from the set-up's
-    /// origin) cut from the triangle `c`, whose facing is `area`'s sign;
-    /// corner `k`'s other attributes are the triangle's vertices' mixed by
-    /// `mix` (`src/clip.rs`; [`Same`] for the triangle itself). The
-    /// corners are from pixel `tile` of the set-up's origin (a big
-    /// target's tile centre on the rare path), drawn on `rect` (pixels from
-    /// there).
-    #[allow(clippy::too_many_arguments)]
+    /// Lights and draws triangle `c` as it is (the lean path): its
+    /// vertices' window positions and depths `p`, of doubled area `area`.
     #[inline(always)]
-    pub(crate) fn pieces<M: ShadingMode, O: Out, D: DepthTest, X: Mix>(
+    pub(crate) fn whole<M: ShadingMode, O: Out, D: DepthTest>(
         &self,
         c: &mut Corners,
-        corners: &[(i32, i32, i32)],
-        mix: X,
-        tris: &[[usize; 3]],
+        p: &[[i32; 3]; 3],
         area: i32,
-        (rect, tile): (&Rect, (i32, i32)),
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), O::Error> {
         let back = area > 0 && self.options.two_sided;
-        let first = if D::ENABLED { 0 } else { 1 };
-        let dither = self.options.dither;
+        let rect = &self.rect;
+        // Vertex k with attributes `a`, its depth first.
+        fn vtx<const N: usize>(p: &[i32; 3], mut a: [i32; N]) -> Vtx<N> {
+            a[0] = p[2];
+            Vtx {
+                x: p[0],
+                y: p[1],
+                a,
+            }
+        }
         match M::KIND {
             ShadingKind::Gouraud => {
-                let s = self.stage_shades(c, back, stats);
-                // The 5/6-bit channel times 2¹⁶, plus ½ (SPEC.md 6): at most
-                // 63.5·2¹⁶ < 2²², at least 2¹⁵ inside the field.
-                let ch = |v: u32, m: u32| (v * m + (1 << 15)) as i32;
-                let va = s.map(|s| {
-                    let b = s.to_bits();
-                    [0, ch(b[0], 31), ch(b[1], 63), ch(b[2], 31)]
-                });
-                let attr = |k: usize| {
-                    let (x, y, z) = corners[k];
-                    let mut a = mix.mix(k, &va);
-                    a[0] = z;
-                    Vtx { x, y, a }
-                };
+                let a = self.gouraud(c, back, stats);
+                let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
+                self.gouraud_draw(&v, area, rect, out, depth, stats)
+            }
+            ShadingKind::Flat => {
+                let sh = self.flat(c, back, stats);
+                let v = [vtx(&p[0], [0]), vtx(&p[1], [0]), vtx(&p[2], [0])];
+                self.draw(&v, area, rect, out, depth, stats, &sh)
+            }
+            ShadingKind::Phong => {
+                let (a, sh) = self.phong(c, back);
+                let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
+                self.draw(&v, area, rect, out, depth, stats, &sh)
+            }
+        }
+    }
+
+    /// Lights and draws the triangles `tris` (corner indices into
+    /// `corners`: window position and depth attribute from the set-up's
+    /// origin) cut from the triangle `c`, whose facing is `facing`'s sign;
+    /// corner `k`'s other attributes are the triangle's vertices' mixed by
+    /// `w[k]` (`Q.30` weights, `src/clip.rs`), drawn on `rect`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn pieces<M: ShadingMode, O: Out, D: DepthTest>(
+        &self,
+        c: &mut Corners,
+        corners: &[(i32, i32, i32)],
+        w: &[[i32; 3]],
+        tris: &[[usize; 3]],
+        facing: i32,
+        rect: &Rect,
+        out: &mut O,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), O::Error> {
+        let back = facing > 0 && self.options.two_sided;
+        let corner = |k: usize| corners.get(k).copied().unwrap_or((0, 0, 0));
+        let weights = |k: usize| w.get(k).copied().unwrap_or([1 << 30, 0, 0]);
+        match M::KIND {
+            ShadingKind::Gouraud => {
+                let a = self.gouraud(c, back, stats);
                 for t in tris {
-                    let v = [attr(t[0]), attr(t[1]), attr(t[2])];
-                    if dither {
-                        self.draw(
-                            &v,
-                            first,
-                            (rect, tile),
-                            out,
-                            depth,
-                            stats,
-                            &span::GouraudDithered,
-                        )?;
-                    } else {
-                        self.draw(&v, first, (rect, tile), out, depth, stats, &span::Gouraud)?;
-                    }
+                    let v = t.map(|k| {
+                        let (x, y, z) = corner(k);
+                        let mut a = mix(weights(k), &a);
+                        a[0] = z;
+                        Vtx { x, y, a }
+                    });
+                    self.gouraud_draw(&v, setup::area(&v), rect, out, depth, stats)?;
                 }
                 Ok(())
             }
             ShadingKind::Flat => {
-                let e = c.vertex.map(|i| self.stage.eye(i));
-                let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
-                let n = if back { n.neg() } else { n };
-                let shade = self.stage.lighting.shade(centroid(e), n);
-                stats.lit = stats.lit.saturating_add(1);
-                let sh = span::Flat {
-                    plain: RawU16::from(shade.to_rgb565()).into_inner(),
-                    shade,
-                    dither,
-                };
+                let sh = self.flat(c, back, stats);
                 for t in tris {
                     let v = t.map(|k| {
-                        let (x, y, z) = corners[k];
+                        let (x, y, z) = corner(k);
                         Vtx { x, y, a: [z] }
                     });
-                    self.draw(&v, first, (rect, tile), out, depth, stats, &sh)?;
+                    self.draw(&v, setup::area(&v), rect, out, depth, stats, &sh)?;
                 }
                 Ok(())
             }
             ShadingKind::Phong => {
-                let en = c.vertex.map(|i| {
-                    let n = self.stage.eye_normal(i);
-                    (self.stage.eye(i), if back { n.neg() } else { n })
-                });
-                // Eye positions relative to vertex 0's, shifted right until
-                // every difference is below 2²⁴ (the set-up's attributes
-                // stay within ±2²⁵): full precision for a small triangle,
-                // 2⁻²⁴ of its extent for a large one.
-                let origin = en[0].0.to_bits().map(i64::from);
-                let mut spread = 0u64;
-                for (e, _) in &en[1..] {
-                    let b = e.to_bits();
-                    for k in 0..3 {
-                        spread = spread.max((b[k] as i64 - origin[k]).unsigned_abs());
-                    }
-                }
-                let shift = (64 - spread.leading_zeros()).saturating_sub(24);
-                let sh = span::Phong {
-                    lighting: self.stage.lighting,
-                    origin,
-                    shift,
-                    dither,
-                };
-                let va = en.map(|(e, n)| {
-                    let (e, n) = (e.to_bits(), n.to_bits());
-                    // Normals with 8 more fractional bits (Q.22, below 2²³).
-                    let rel = |j: usize| ((e[j] as i64 - origin[j]) >> shift) as i32;
-                    let n = n.map(|v| (v as i32) << 8);
-                    [0, n[0], n[1], n[2], rel(0), rel(1), rel(2)]
-                });
-                let attr = |k: usize| {
-                    let (x, y, z) = corners[k];
-                    let mut a = mix.mix(k, &va);
-                    a[0] = z;
-                    Vtx { x, y, a }
-                };
+                let (a, sh) = self.phong(c, back);
                 for t in tris {
-                    let v = [attr(t[0]), attr(t[1]), attr(t[2])];
-                    self.draw(&v, first, (rect, tile), out, depth, stats, &sh)?;
+                    let v = t.map(|k| {
+                        let (x, y, z) = corner(k);
+                        let mut a = mix(weights(k), &a);
+                        a[0] = z;
+                        Vtx { x, y, a }
+                    });
+                    self.draw(&v, setup::area(&v), rect, out, depth, stats, &sh)?;
                 }
                 Ok(())
             }
         }
     }
 
-    /// The three corners' lit colours (Gouraud), for the back if `back`.
+    /// Gouraud attributes of the three vertices (depth left 0): each lit
+    /// colour's 5/6-bit channels times 2¹⁶, plus ½ (SPEC.md 6), at most
+    /// 63.5·2¹⁶ < 2²² and at least 2¹⁵ inside their fields.
     #[inline(always)]
-    fn stage_shades(&self, c: &mut Corners, back: bool, stats: &mut DrawStats) -> [Shade; 3] {
-        let mut s = [Shade::BLACK; 3];
-        for ((s, &slot), &i) in s.iter_mut().zip(&c.slot).zip(&c.vertex) {
-            if let Some(v) = c.cache.get_mut(slot) {
-                *s = self.stage.shade(v, i, back, stats);
-            }
-        }
-        s
+    fn gouraud(&self, c: &mut Corners, back: bool, stats: &mut DrawStats) -> [[i32; 4]; 3] {
+        let ch = |v: u32, m: u32| (v * m + (1 << 15)) as i32;
+        let a = |s: Shade| {
+            let b = s.to_bits();
+            [0, ch(b[0], 31), ch(b[1], 63), ch(b[2], 31)]
+        };
+        let [s0, s1, s2] = self.shades(c, back, stats);
+        [a(s0), a(s1), a(s2)]
     }
 
-    /// Sets up and walks one triangle `v` (attributes from `first`) on
-    /// `rect`, sending each span, moved by `tile`, through `sh`. Out of
+    /// Sets up and draws Gouraud triangle `v`, dithered or not.
+    #[inline(always)]
+    fn gouraud_draw<O: Out, D: DepthTest>(
+        &self,
+        v: &[Vtx<4>; 3],
+        area: i32,
+        rect: &Rect,
+        out: &mut O,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<(), O::Error> {
+        if self.options.dither {
+            self.draw(v, area, rect, out, depth, stats, &span::GouraudDithered)
+        } else {
+            self.draw(v, area, rect, out, depth, stats, &span::Gouraud)
+        }
+    }
+
+    /// The flat shader: the equation at the centroid with the face normal.
+    fn flat(&self, c: &Corners, back: bool, stats: &mut DrawStats) -> span::Flat {
+        let e = c.vertex.map(|i| self.stage.eye(i));
+        let n = face_normal(e[0], e[1], e[2]).unwrap_or(Unit3::ZERO);
+        let n = if back { n.neg() } else { n };
+        let shade = self.stage.lighting.shade(centroid(e), n);
+        stats.lit = stats.lit.saturating_add(1);
+        span::Flat {
+            plain: RawU16::from(shade.to_rgb565()).into_inner(),
+            shade,
+            dither: self.options.dither,
+        }
+    }
+
+    /// Phong attributes of the three vertices (depth left 0) and the
+    /// shader: eye positions relative to vertex 0's, shifted right until
+    /// every difference is below 2²⁴ (the set-up's attributes stay within
+    /// ±2²⁵): full precision for a small triangle, 2⁻²⁴ of its extent for
+    /// a large one; normals with 8 more fractional bits (`Q.22`, below
+    /// 2²³).
+    fn phong(&self, c: &Corners, back: bool) -> ([[i32; 7]; 3], span::Phong<'_, S, V, L>) {
+        let en = c.vertex.map(|i| {
+            let n = self.stage.eye_normal(i);
+            (self.stage.eye(i), if back { n.neg() } else { n })
+        });
+        let origin = en[0].0.to_bits().map(i64::from);
+        let mut spread = 0u64;
+        for (e, _) in &en[1..] {
+            let b = e.to_bits();
+            for k in 0..3 {
+                spread = spread.max((b[k] as i64 - origin[k]).unsigned_abs());
+            }
+        }
+        let shift = (64 - spread.leading_zeros()).saturating_sub(24);
+        let a = en.map(|(e, n)| {
+            let (e, n) = (e.to_bits(), n.to_bits());
+            let rel = |j: usize| ((e[j] as i64 - origin[j]) >> shift) as i32;
+            let n = n.map(|v| (v as i32) << 8);
+            [0, n[0], n[1], n[2], rel(0), rel(1), rel(2)]
+        });
+        let sh = span::Phong {
+            lighting: self.stage.lighting,
+            origin,
+            shift,
+            dither: self.options.dither,
+        };
+        (a, sh)
+    }
+
+    /// The three corners' lit colours (Gouraud), for the back if `back`.
+    #[inline(always)]
+    fn shades(&self, c: &mut Corners, back: bool, stats: &mut DrawStats) -> [Shade; 3] {
+        let mut one = |k: usize| match c.cache.get_mut(c.slot[k]) {
+            Some(v) => self.stage.shade(v, c.vertex[k], back, stats),
+            None => Shade::BLACK,
+        };
+        [one(0), one(1), one(2)]
+    }
+
+    /// Sets up and walks one triangle `v` of doubled area `area` on
+    /// `rect`, sending its rows' spans through `sh` (the depth left out
+    /// without a depth test). Out of
     /// line: its row and pixel loops get the registers, not the triangle
     /// loop's state.
     #[inline(never)]
@@ -204,59 +265,48 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     fn draw<const N: usize, O: Out, D: DepthTest, Sh: Shader<N>>(
         &self,
         v: &[Vtx<N>; 3],
-        first: usize,
-        (rect, tile): (&Rect, (i32, i32)),
+        area: i32,
+        rect: &Rect,
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
         sh: &Sh,
     ) -> Result<(), O::Error> {
-        let area = setup::area(v);
         if area == 0 {
             return Ok(());
         }
+        let first = if D::ENABLED { 0 } else { 1 };
         let mut planes = Planes::default();
-        let Some(walk) = setup::set_up(v, area, first, rect, &mut planes) else {
+        let Some(mut walk) = setup::set_up(v, area, first, rect, &mut planes) else {
             return Ok(());
         };
         stats.drawn = stats.drawn.saturating_add(1);
+        let mut table = [MaybeUninit::uninit(); CHUNK];
         // A triangle's pixels are at most 2¹¹ × 2¹¹: no overflow.
-        let mut pixels = 0u32;
-        let res = walk.run(&planes, |s: &Span<N>| {
-            let moved;
-            let s = if tile == (0, 0) {
-                s
-            } else {
-                moved = Span {
-                    y: s.y + tile.1,
-                    x0: s.x0 + tile.0,
-                    ..*s
-                };
-                &moved
-            };
-            pixels += out.span(depth, s, sh)?;
-            Ok(())
-        });
+        let (mut pixels, top) = (0u32, walk.y);
+        let res = loop {
+            let y = walk.y;
+            let rows = walk.fill(&mut table);
+            if rows.is_empty() {
+                break Ok(());
+            }
+            match out.rows(depth, rows, (y, y - top), walk.cols, &planes, sh) {
+                Ok(w) => pixels += w,
+                Err(e) => break Err(e),
+            }
+        };
         stats.pixels = stats.pixels.saturating_add(pixels);
         res
     }
 }
 
-/// How a polygon's corners take the attributes of the triangle's three
-/// vertices.
-pub(crate) trait Mix {
-    /// Corner `k`'s attributes from the vertices' `a`.
-    fn mix<const N: usize>(&self, k: usize, a: &[[i32; N]; 3]) -> [i32; N];
-}
-
-/// The triangle itself: corner `k` is vertex `k`.
-pub(crate) struct Same;
-
-impl Mix for Same {
-    #[inline(always)]
-    fn mix<const N: usize>(&self, k: usize, a: &[[i32; N]; 3]) -> [i32; N] {
-        a[k]
-    }
+/// Attributes mixed from the three vertices' `a` by `Q.30` weights `w`
+/// (summing to 2³⁰): `|a| < 2²⁶`, so each product is below 2⁵⁶.
+fn mix<const N: usize>(w: [i32; 3], a: &[[i32; N]; 3]) -> [i32; N] {
+    core::array::from_fn(|i| {
+        let s: i64 = (0..3).map(|j| w[j] as i64 * a[j][i] as i64).sum();
+        ((s + (1 << 29)) >> 30) as i32
+    })
 }
 
 /// The centroid of three eye-space points (sums in `i64`, rounded).

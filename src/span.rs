@@ -28,7 +28,7 @@ use crate::material::Specular;
 use crate::normalize::normalize;
 use crate::platform;
 use crate::vector::{Unit3, Vec3};
-use crate::walk::Span;
+use crate::walk::{Planes, Row, Span};
 
 /// A pixel's stored depth from its depth plane: `d = ⌊z/2¹²⌋`, clamped to
 /// `u16` (a plane beyond the far plane reaches past 65535, one at the near
@@ -57,6 +57,15 @@ pub(crate) trait Shader<const N: usize>: Sized {
     fn fill_depth(&self, row: &mut [u16], zrow: &mut [u16], s: &Span<N>, at: (i32, i32)) -> u32 {
         fill_depth(self, row, zrow, &s.start(), s.step(), at)
     }
+
+    /// The rows of `run` through the depth test, colour and depth laid out
+    /// alike, by a loop of the platform's (`None`: this shader has none,
+    /// and the rows go span by span).
+    #[inline(always)]
+    fn rows_depth(&self, run: &mut platform::Rows) -> Option<u32> {
+        let _ = run;
+        None
+    }
 }
 
 /// Gouraud colours: attributes 1–3 are the red, green and blue planes.
@@ -68,11 +77,10 @@ impl Shader<4> for Gouraud {
         platform::pack_planes(a[1], a[2], a[3])
     }
 
-    /// The platform's loop (assembly on the Cortex-M cores), which makes
-    /// the span's start from the planes itself.
+    /// The platform's loop (assembly on the Cortex-M cores).
     #[inline(always)]
-    fn fill_depth(&self, row: &mut [u16], zrow: &mut [u16], s: &Span<4>, _: (i32, i32)) -> u32 {
-        platform::gouraud_depth(row, zrow, s.planes, s.x0, s.dy)
+    fn rows_depth(&self, run: &mut platform::Rows) -> Option<u32> {
+        Some(platform::gouraud_depth_rows(run))
     }
 }
 
@@ -192,6 +200,50 @@ pub(crate) trait Out {
     /// Moves the set-up's origin by `by` pixels (a big target's tile on
     /// the rare path, `src/clip.rs`).
     fn moved(&mut self, by: (i32, i32));
+
+    /// Draws the spans of `rows` (table row `j` is row `y + j`, `dy + j`
+    /// below the planes' first, its columns within `cols`) through depth
+    /// test `D` with colours from `sh`; returns the pixels written.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn rows<const N: usize, D: DepthTest, Sh: Shader<N>>(
+        &mut self,
+        depth: &mut D,
+        rows: &[Row],
+        (y, dy): (i32, i32),
+        cols: (i32, i32),
+        planes: &Planes<N>,
+        sh: &Sh,
+    ) -> Result<u32, Self::Error> {
+        let _ = cols;
+        each_span(self, depth, rows, (y, dy), planes, sh)
+    }
+}
+
+/// [`Out::rows`] span by span.
+#[inline(always)]
+fn each_span<const N: usize, O: Out + ?Sized, D: DepthTest, Sh: Shader<N>>(
+    out: &mut O,
+    depth: &mut D,
+    rows: &[Row],
+    (y, dy): (i32, i32),
+    planes: &Planes<N>,
+    sh: &Sh,
+) -> Result<u32, O::Error> {
+    let mut written = 0u32;
+    for (j, r) in rows.iter().enumerate() {
+        if r.n > 0 {
+            let span = Span {
+                y: y + j as i32,
+                x0: r.x0,
+                n: r.n as u32,
+                dy: dy + j as i32,
+                planes,
+            };
+            written += out.span(depth, &span, sh)?;
+        }
+    }
+    Ok(written)
 }
 
 /// Pixels in memory: rows `y0 ..` of a `width`-pixel-wide target, row-major
@@ -255,6 +307,40 @@ impl Out for Memory<'_> {
             _ => Some(depth.row(at.1 as u32, at.0 as u32, s.n)),
         };
         Ok(zrow.map_or(0, |z| sh.fill_depth(row, z, s, at)))
+    }
+
+    /// A shader with a loop of the platform's over a table, with a depth
+    /// store laid out as the colour, runs it on the table at once: checked
+    /// once that every row's span, within `cols`, lies in both buffers.
+    #[inline(always)]
+    fn rows<const N: usize, D: DepthTest, Sh: Shader<N>>(
+        &mut self,
+        depth: &mut D,
+        rows: &[Row],
+        (y, dy): (i32, i32),
+        cols: (i32, i32),
+        planes: &Planes<N>,
+        sh: &Sh,
+    ) -> Result<u32, Self::Error> {
+        if D::ENABLED {
+            if let Some((zbuf, w, y0)) = depth.flat() {
+                if w == self.width && y0 == self.y0 {
+                    // The index of column 0 of the first and last rows.
+                    let first = (y as u32).wrapping_mul(self.width).wrapping_add(self.at) as i64;
+                    let last = first + (rows.len() as i64 - 1) * self.width as i64;
+                    let len = self.buf.len().min(zbuf.len()) as i64;
+                    if first + cols.0 as i64 >= 0 && last + (cols.1 as i64) < len {
+                        let mut run = platform::Rows::new(
+                            planes, dy, rows, self.buf, zbuf, first, self.width,
+                        );
+                        if let Some(w) = sh.rows_depth(&mut run) {
+                            return Ok(w);
+                        }
+                    }
+                }
+            }
+        }
+        each_span(self, depth, rows, (y, dy), planes, sh)
     }
 
     fn moved(&mut self, by: (i32, i32)) {

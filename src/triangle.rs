@@ -23,7 +23,7 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::options::{DrawStats, ShadingMode};
-use crate::shade::{Corners, Frame, Same};
+use crate::shade::{Corners, Frame};
 use crate::span::Out;
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
@@ -58,18 +58,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if snap_may_flip(area, &p) && self.turned_over(c, area) {
             return Ok(());
         }
-        let corners = [0, 1, 2].map(|k| (p[k][0], p[k][1], p[k][2]));
-        self.pieces::<M, O, D, _>(
-            c,
-            &corners,
-            Same,
-            &[[0, 1, 2]],
-            area,
-            (&self.rect, (0, 0)),
-            out,
-            depth,
-            stats,
-        )
+        self.whole::<M, O, D>(c, &p, area, out, depth, stats)
     }
 
     /// Whether the box of window positions `p` holds a pixel centre of the

@@ -112,7 +112,7 @@ impl Row {
     #[inline(always)]
     fn fourteen(&self, q: [i16; 3]) -> i32 {
         if platform::SOFT_MUL64 {
-            let q = q.map(i32::from);
+            let q = [q[0] as i32, q[1] as i32, q[2] as i32];
             let (h, l) = (&self.gh, &self.gl);
             let hi = h[0] * q[0] + h[1] * q[1] + h[2] * q[2] + self.th;
             let lo = l[0] * q[0] + l[1] * q[1] + l[2] * q[2] + self.tl;
@@ -204,6 +204,19 @@ impl Rows {
         w >= 1 << 36 && z > (w + (1 << 18) - 1) >> 18 && z < w && band(x) && band(y)
     }
 
+    /// `⌊V/2¹⁴⌋` of the four rows at position `q` (four calls: `[T;
+    /// N]::map` is not inlined on ARMv6-M, a call a vertex).
+    #[inline(always)]
+    fn fourteen(&self, q: [i16; 3]) -> [i32; 4] {
+        let r = &self.r;
+        [
+            r[0].fourteen(q),
+            r[1].fourteen(q),
+            r[2].fourteen(q),
+            r[3].fourteen(q),
+        ]
+    }
+
     /// The exact rows of position `q`.
     #[inline]
     pub(crate) fn exact(&self, q: [i16; 3]) -> [i64; 4] {
@@ -232,7 +245,7 @@ impl Rows {
     /// contained).
     #[inline(never)]
     fn fast_tested(&self, q: [i16; 3]) -> Window {
-        let [x14, y14, z14, w14] = self.r.map(|r| r.fourteen(q));
+        let [x14, y14, z14, w14] = self.fourteen(q);
         // In front of the eye with 22 bits (precision), in front of the
         // near plane, before z_w = 2, and |X/W| < 2^-2 (|x| < 2^14).
         let quarter = w14 >> 2;
@@ -263,7 +276,7 @@ impl Rows {
     /// estimate's.
     #[inline(always)]
     fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
-        let [x14, y14, z14, w14] = self.r.map(|r| r.fourteen(q));
+        let [x14, y14, z14, w14] = self.fourteen(q);
         let n = platform::leading_zeros(w14 as u32);
         let d = (w14 as u32) << n;
         let r = recip_fast(d);
@@ -285,7 +298,7 @@ impl Rows {
     /// or `None` where `q` has none: the facing of a sliver
     /// (`src/triangle.rs`).
     pub(crate) fn fine(&self, q: [i16; 3]) -> Option<[i64; 2]> {
-        let [x14, y14, _, w14] = self.r.map(|r| r.fourteen(q));
+        let [x14, y14, _, w14] = self.fourteen(q);
         let quarter = w14 >> 2;
         if !self.fast || w14 <= 0 || x14.abs() >= quarter || y14.abs() >= quarter {
             return None;

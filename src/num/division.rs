@@ -8,13 +8,14 @@
 //! A 64-bit division is one instruction on a 64-bit core and a library call
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
 //! Cortex-M4 (which divides only 32-bit numbers in hardware); a 32-bit one
-//! is a library call on the Cortex-M0. [`recip63`] makes a reciprocal with
-//! two 32-bit divisions where the core has them, else a table, a Newton
-//! step and an exact remainder step; [`Divisor`] shares one among several
-//! exact floors. The values are the same on every target (unit tests hold
-//! each form to the plain division, [`recip63`] over its whole domain,
-//! which CI runs in release; CI runs the whole suite on the host with
-//! `--cfg fixshade_soft_div32`), so frames stay bit-exact.
+//! is a library call on the Cortex-M0. [`recip_fast`] makes a reciprocal
+//! from a table and one Newton step, with 32 × 32 → 64-bit products only;
+//! [`Divisor`] shares one among several exact floors, corrected by their
+//! remainders. The values are the same on every target (unit tests hold
+//! the reciprocal to its bound over its whole domain, which CI runs in
+//! release, and the floors to the plain division; CI runs the whole suite
+//! on the host with `--cfg fixshade_soft_div32`), so frames stay
+//! bit-exact.
 
 use core::ops::{Add, Div, Rem, Sub};
 
@@ -74,8 +75,8 @@ fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
 
 /// Exact floors `⌊n/d⌋` of any `i32` numerators by one divisor `d ∈ [1,
 /// 2³¹)`: the core's division where it has one, else a shared reciprocal
-/// `r = ⌊2⁶³/(d·2ˢ)⌋` (`d·2ˢ ∈ [2³¹, 2³²)`) and a correction. The same
-/// values on every core.
+/// `r ≈ 2⁶³/(d·2ˢ)` ([`recip_fast`], `d·2ˢ ∈ [2³¹, 2³²)`) and a correction.
+/// The same values on every core.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Divisor {
     d: u32,
@@ -96,7 +97,7 @@ impl Divisor {
             };
         }
         let s = platform::leading_zeros(d as u32);
-        let r = recip63((d as u32) << s).min(u32::MAX as u64) as u32;
+        let r = recip_fast((d as u32) << s);
         Divisor { d: d as u32, r, s }
     }
 
@@ -111,20 +112,27 @@ impl Divisor {
     }
 
     /// [`Divisor::floor`] without a division. With `a = |n| ≤ 2³¹`, `q =
-    /// ⌊a·r/2⁶³⁻ˢ⌋` (from [`mul_hi32`], which may be one short) is below
-    /// `a/d` by at most `a·2/2⁶³⁻ˢ ≤ 2ˢ⁻³¹` (`r ≥ 2⁶³/(d·2ˢ) − 2`), plus
-    /// `2ˢ⁻³¹` for the short product and 1 for the floor: three below
-    /// `⌊a/d⌋` at most, and one where `d ≥ 2³⁰` (`s ≤ 1`). So the remainder
-    /// `a − q·d` is below `4d < 2³²` (`d < 2³⁰`) or `2d < 2³²`: exact in
-    /// wrapping `u32` arithmetic, and stepped down below `d`.
+    /// ⌊a·r/2⁶³⁻ˢ⌋` (from [`mul_hi32`], which may be one short) is within
+    /// `a/d·2⁻²⁷ ≤ 2⁴` of `a/d` (`r` within a relative `2⁻²⁷`: `a/d <
+    /// 2³¹`), plus `2ˢ⁻³¹` for the short product and 1 for the floor: below
+    /// `⌊a/d⌋ + 18` and above `⌊a/d⌋ − 18`, and within 2 where `d ≥ 2⁵`
+    /// (the edges' divisors are larger still, mostly). The remainder `a −
+    /// q·d` is exact in wrapping `u32` arithmetic when it lies within
+    /// `±2³¹`: `18d < 2³¹` for `d < 2²⁶` (the set-up's `dy < 2¹⁵`), `2d <
+    /// 2³²` otherwise (`q` within 2 once `d ≥ 2²⁶`, as `a/d < 2⁶`); it is
+    /// stepped into `[0, d)` both ways.
     #[inline(always)]
     fn floor_by_reciprocal(&self, n: i32) -> i32 {
         let a = n.unsigned_abs();
         let mut q = mul_hi32(a, self.r) >> (31 - self.s);
-        let mut rem = a.wrapping_sub(q.wrapping_mul(self.d));
-        while rem >= self.d {
+        let mut rem = a.wrapping_sub(q.wrapping_mul(self.d)) as i32;
+        while rem < 0 {
+            q -= 1;
+            rem += self.d as i32;
+        }
+        while rem as u32 >= self.d {
             q += 1;
-            rem -= self.d;
+            rem -= self.d as i32;
         }
         if n >= 0 {
             q as i32
@@ -159,45 +167,15 @@ const RECIP_NODES: [u32; 65] = {
     t
 };
 
-/// `⌊a·b / 2³²⌋` or one less: the high word of one 32 × 32 → 64-bit product
-/// where the core has it, [`mul_hi32`]'s three 16 × 16 → 32-bit products
-/// where not. For callers that correct the result exactly afterwards.
-#[inline(always)]
-fn mul_hi_approx(a: u32, b: u32) -> u32 {
-    if platform::SOFT_MUL64 {
-        mul_hi32(a, b)
-    } else {
-        (mul_u32(a, b) >> 32) as u32
-    }
-}
-
-/// `a · b` for `b < 2¹⁶`, from two 16 × 16 → 32-bit products.
-#[inline(always)]
-fn mul_u32_by_u16(a: u32, b: u32) -> u64 {
-    debug_assert!(b < 1 << 16);
-    ((((a >> 16) * b) as u64) << 16) + ((a & 0xFFFF) * b) as u64
-}
-
-/// `⌊2⁶³ / d⌋` for `d ∈ [2³¹, 2³²)` (a value in `(2³¹, 2³²]`), for the
-/// targets without a 64-bit divide: [`recip63_by_digits`] where the core
-/// divides 32-bit numbers, else [`recip63_newton`] (the same value).
-#[inline]
-pub(crate) fn recip63(d: u32) -> u64 {
-    if platform::hardware_div32() {
-        recip63_by_digits(d)
-    } else {
-        recip63_newton(d)
-    }
-}
-
 /// `2⁶³/d` within a relative `2⁻²⁷`, for `d ∈ [2³¹, 2³²)`: the chord
 /// between the two [`RECIP_NODES`] around `d` (within `Y·2⁻¹⁴`, `Y =
 /// 2⁶³/d`: a relative `(Δd/d)²/4` for `Y` convex, `Δd/d ≤ 2⁻⁶`), then one
 /// Newton step, `y ← y + 2·⌊y·e/2³²⌋` with `e = 2³¹ − ⌊d·y/2³²⌋` (the error
 /// squared, `2⁻²⁸`, plus a few units for the floors).
 /// Exact 32 × 32 → 64-bit products only, so the value is the same on every
-/// core; cheaper than [`recip63`] where a caller needs no exact quotient
-/// (the vertex stage, whose roundings near a half it resolves exactly).
+/// core. Its callers need no exact reciprocal: [`Divisor`] corrects its
+/// quotients, the vertex stage resolves its roundings near a half
+/// exactly, and the set-up's planes take a common factor within 2⁻²⁷.
 #[inline(always)]
 pub(crate) fn recip_fast(d: u32) -> u32 {
     debug_assert!(d >= 1 << 31);
@@ -213,42 +191,6 @@ pub(crate) fn recip_fast(d: u32) -> u32 {
     }
 }
 
-/// [`recip63`] as a long division in two 16-bit digits, each from one
-/// 32-bit division by the divisor's high half `v₁ = ⌊d/2¹⁶⌋ ≥ 2¹⁵` and
-/// corrected down by the low half `v₀` (Knuth's algorithm D, base 2¹⁶).
-///
-/// The numerator's digits are `2³¹, 0, 0`. Digit 1: `q̂ = ⌊2³¹/v₁⌋ ≤ 2¹⁶`
-/// with remainder `r̂`; while `q̂ ≥ 2¹⁶` or `q̂·v₀ > r̂·2¹⁶` (and `r̂ < 2¹⁶`)
-/// it is one too large. The partial remainder `2⁴⁷ − q₁·d` is below
-/// `d < 2³²`, so it is exact modulo 2³² (`2⁴⁷ ≡ 0`). Digit 0 likewise, from
-/// that remainder (below `d`, so `q̂ ≤ 2¹⁶ + 2`). The normalised divisor
-/// (`d ≥ 2³¹`) bounds each estimate to at most two above the digit. The
-/// test's product is formed only for `q̂ < 2¹⁶` (below 2³²), and `r̂·2¹⁶`
-/// only while `r̂ < 2¹⁶`.
-#[inline]
-fn recip63_by_digits(d: u32) -> u64 {
-    debug_assert!(d >= 1 << 31);
-    if d == 1 << 31 {
-        // Y = 2^32, a digit pair past 2^32 − 1.
-        return 1 << 32;
-    }
-    let (v1, v0) = (d >> 16, d & 0xFFFF);
-    let digit = |n: u32| {
-        let (mut q, mut r) = (n / v1, n % v1);
-        while q >> 16 != 0 || q * v0 > r << 16 {
-            q -= 1;
-            r += v1;
-            if r >> 16 != 0 {
-                break;
-            }
-        }
-        q
-    };
-    let q1 = digit(1 << 31);
-    let q0 = digit(q1.wrapping_mul(d).wrapping_neg());
-    ((q1 as u64) << 16) | q0 as u64
-}
-
 /// `2⁶³/d` from the chord between the two [`RECIP_NODES`] around `d ∈
 /// [2³¹, 2³²)`: within `Y·2⁻¹⁴` (see [`recip_fast`]).
 #[inline(always)]
@@ -261,55 +203,9 @@ fn chord(d: u32) -> u32 {
     t0 - ((((t0 - t1) >> 10) * frac) >> 6)
 }
 
-/// [`recip63`] without a division; `Y = 2⁶³/d`.
-///
-/// 1. Seed: the [`chord`], within `Y·2⁻¹⁴`.
-/// 2. A Newton step in 32 bits: with `y = Y·(1 − ε)`,
-///    `e = 2³¹ − ⌊d·y/2³²⌋ ≈ 2³¹·ε` and `y ← y + 2·⌊y·e/2³²⌋ = Y·(1 − ε²)`,
-///    off by at most 8 units for the truncated products: `|Y − y| < 2¹¹`.
-/// 3. The exact remainder `e = 2⁶³ − d·y` (`|e| < 2⁴³`), the quotient
-///    `δ ≈ e·y/2⁶³` of it by `d` (`|δ| < 2¹¹`, within 2 of `e/d`), and
-///    `e − δ·d` exactly, which at most two steps of one `d` bring into
-///    `[0, d)`.
-#[inline]
-fn recip63_newton(d: u32) -> u64 {
-    debug_assert!(d >= 1 << 31);
-    if d == 1 << 31 {
-        // Y = 2^32, which the 32-bit operands below cannot hold.
-        return 1 << 32;
-    }
-    let y = chord(d);
-    // |e| ≤ 2^18 (ε ≤ 2^-14 and the products' truncation).
-    let e = (1u32 << 31).wrapping_sub(mul_hi_approx(d, y)) as i32;
-    let step = 2 * mul_hi_approx(y, e.unsigned_abs()) as i64;
-    // Y < 2^32 − 1 for d > 2^31: the cap keeps y within 2^11 of Y.
-    let y = (y as i64 + if e < 0 { -step } else { step }).clamp(0, u32::MAX as i64) as u32;
-    let e = (1u64 << 63).wrapping_sub(mul_u32(d, y)) as i64;
-    let delta = mul_hi_approx(y, (e.unsigned_abs() >> 11) as u32) >> 20;
-    let by = mul_u32_by_u16(d, delta) as i64;
-    let (mut y, mut e) = if e < 0 {
-        (y as i64 - delta as i64, e + by)
-    } else {
-        (y as i64 + delta as i64, e - by)
-    };
-    let y0 = y;
-    while e < 0 {
-        y -= 1;
-        e += d as i64;
-    }
-    while e >= d as i64 {
-        y += 1;
-        e -= d as i64;
-    }
-    debug_assert!(y.abs_diff(y0) <= 2, "{d}: {y0} → {y}");
-    y as u64
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{
-        floor_div_rem, floor_div_shifted, recip63_by_digits, recip63_newton, recip_fast, Divisor,
-    };
+    use super::{floor_div_rem, floor_div_shifted, recip_fast, Divisor};
     use crate::tests::xorshift;
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
@@ -337,29 +233,6 @@ mod tests {
         }
     }
 
-    /// Both reciprocals are the division's, at the ends of their domain,
-    /// at every power of two and its neighbours, at the digit boundaries,
-    /// and at random divisors.
-    #[test]
-    fn reciprocals_are_the_division() {
-        let mut ds: Vec<u32> = vec![1 << 31, (1 << 31) + 1, u32::MAX, u32::MAX - 1];
-        for k in 0..31 {
-            for d in [(1u32 << 31) + (1 << k), (1u32 << 31) + (1 << k) - 1] {
-                ds.push(d);
-            }
-        }
-        for h in [1u32 << 15, (1 << 16) - 1] {
-            ds.extend([h << 16, (h << 16) | 0xFFFF]);
-        }
-        let mut next = xorshift(0x1234_5678_9abc_def1);
-        ds.extend((0..200_000).map(|_| (next() as u32) | 1 << 31));
-        for d in ds {
-            let want = (1u64 << 63) / d as u64;
-            assert_eq!(recip63_newton(d), want, "{d}");
-            assert_eq!(recip63_by_digits(d), want, "{d}");
-        }
-    }
-
     /// The reciprocal form of [`Divisor`] is the division: numerators at
     /// both ends of `i32` and around multiples, divisors of every size.
     #[test]
@@ -371,7 +244,7 @@ mod tests {
             let s = d.leading_zeros();
             let v = Divisor {
                 d: d as u32,
-                r: super::recip63((d as u32) << s).min(u32::MAX as u64) as u32,
+                r: recip_fast((d as u32) << s),
                 s,
             };
             let mut ns = vec![
@@ -418,7 +291,10 @@ mod tests {
     fn check_fast(d: u32) {
         let exact = (1u128 << 63) as f64 / d as f64;
         let got = recip_fast(d) as f64;
-        assert!((got - exact).abs() <= exact / (1u64 << 27) as f64, "{d}: {got} {exact}");
+        assert!(
+            (got - exact).abs() <= exact / (1u64 << 27) as f64,
+            "{d}: {got} {exact}"
+        );
     }
 
     /// [`recip_fast`] over every divisor: run with
@@ -428,18 +304,6 @@ mod tests {
     fn recip_fast_exhaustive() {
         for d in (1u32 << 31)..=u32::MAX {
             check_fast(d);
-        }
-    }
-
-    /// Every divisor of the domain (2³¹ of them): run with
-    /// `cargo test --release --lib -- --ignored recip63_exhaustive`.
-    #[test]
-    #[ignore = "2^31 divisors: 12 s in release, 44 s in debug (CI runs it)"]
-    fn recip63_exhaustive() {
-        for d in (1u32 << 31)..=u32::MAX {
-            let want = (1u64 << 63) / d as u64;
-            assert_eq!(recip63_newton(d), want, "{d}");
-            assert_eq!(recip63_by_digits(d), want, "{d}");
         }
     }
 }

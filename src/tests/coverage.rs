@@ -7,8 +7,8 @@
 //! values, out to the guard band and the attributes' bound.
 
 use crate::setup::{area, set_up, Rect, Vtx, ATTR};
-use crate::walk::Planes;
 use crate::vertex::GUARD;
+use crate::walk::Planes;
 use proptest::prelude::*;
 
 /// `E_ab(p)`, y down.
