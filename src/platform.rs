@@ -109,6 +109,106 @@ pub(crate) fn pack_planes(r: i32, g: i32, b: i32) -> u16 {
     }
 }
 
+/// Two pixels from three lane words (red and blue `Q5.11`, green `Q6.10`,
+/// in each 16-bit half; see `src/span.rs`'s `Pairs`), the first in the low
+/// half.
+///
+/// On ARMv7-M the masks are immediates of `and` and the shifts ride on the
+/// `orr`s: five instructions. Elsewhere the expression in Rust.
+#[inline(always)]
+pub(crate) fn pack_pair(l: [u32; 3]) -> u32 {
+    #[cfg(fixshade_thumb2)]
+    {
+        let w: u32;
+        // SAFETY: register arithmetic only.
+        unsafe {
+            core::arch::asm!(
+                "and {t}, {g}, #0xFC00FC00",
+                "and {w}, {r}, #0xF800F800",
+                "orr {w}, {w}, {t}, lsr #5",
+                "and {t}, {b}, #0xF800F800",
+                "orr {w}, {w}, {t}, lsr #11",
+                r = in(reg) l[0],
+                g = in(reg) l[1],
+                b = in(reg) l[2],
+                w = out(reg) w,
+                t = out(reg) _,
+                options(pure, nomem, nostack, preserves_flags),
+            );
+        }
+        w
+    }
+    #[cfg(not(fixshade_thumb2))]
+    {
+        (l[0] & 0xF800_F800) | ((l[1] >> 5) & 0x07E0_07E0) | ((l[2] >> 11) & 0x001F_001F)
+    }
+}
+
+/// Pixel pairs from lanes `l` stepped by `s` into `row`, two pixels a
+/// pair (an odd last pixel left alone); returns the lanes after the last
+/// pair.
+///
+/// On ARMv7-M a loop of assembly, two pairs an iteration: 20
+/// instructions for four pixels (two [`pack_pair`]s, six adds, two
+/// stores, the count). The stores are words at any halfword address,
+/// which ARMv7-M allows. In Rust, LLVM keeps the steps on the stack and
+/// copies the lanes (29 instructions). Elsewhere the loop in Rust.
+#[inline(always)]
+pub(crate) fn pair_run(l: [u32; 3], s: [u32; 3], row: &mut [u16]) -> [u32; 3] {
+    let mut l = l;
+    #[cfg(fixshade_thumb2)]
+    let row = {
+        let quads = row.len() / 4;
+        if quads > 0 {
+            // SAFETY: `quads` iterations store 8 bytes each from the row's
+            // first pixel on: `4·quads ≤ row.len()` pixels.
+            unsafe {
+                core::arch::asm!(
+                    "1:",
+                    "and {t}, {g}, #0xFC00FC00",
+                    "and {w}, {r}, #0xF800F800",
+                    "orr {w}, {w}, {t}, lsr #5",
+                    "and {t}, {b}, #0xF800F800",
+                    "orr {w}, {w}, {t}, lsr #11",
+                    "add {r}, {sr}",
+                    "add {g}, {sg}",
+                    "add {b}, {sb}",
+                    "str {w}, [{at}], #4",
+                    "and {t}, {g}, #0xFC00FC00",
+                    "and {w}, {r}, #0xF800F800",
+                    "orr {w}, {w}, {t}, lsr #5",
+                    "and {t}, {b}, #0xF800F800",
+                    "orr {w}, {w}, {t}, lsr #11",
+                    "add {r}, {sr}",
+                    "add {g}, {sg}",
+                    "add {b}, {sb}",
+                    "str {w}, [{at}], #4",
+                    "subs {n}, #1",
+                    "bne 1b",
+                    r = inout(reg) l[0],
+                    g = inout(reg) l[1],
+                    b = inout(reg) l[2],
+                    sr = in(reg) s[0],
+                    sg = in(reg) s[1],
+                    sb = in(reg) s[2],
+                    at = inout(reg) row.as_mut_ptr() => _,
+                    n = inout(reg) quads => _,
+                    w = out(reg) _,
+                    t = out(reg) _,
+                    options(nostack),
+                );
+            }
+        }
+        &mut row[4 * quads..]
+    };
+    for p in row.chunks_exact_mut(2) {
+        let w = pack_pair(l);
+        p.copy_from_slice(&[w as u16, (w >> 16) as u16]);
+        l = [0, 1, 2].map(|k| l[k].wrapping_add(s[k]));
+    }
+    l
+}
+
 /// A table of a triangle's rows ready for a row loop: the planes at column
 /// 0 of the current row, stepped by `gy` a row and `gx` a pixel, the rows'
 /// spans, and where each row's column 0 lies in the colour and depth

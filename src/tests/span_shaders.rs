@@ -4,10 +4,9 @@
 //! RGB565 rounding of SPEC.md 6 on every core's form.
 
 use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::prelude::{Point, RawData};
+use embedded_graphics::prelude::{OriginDimensions, Pixel, Point, RawData, Size};
 use proptest::prelude::*;
 
 use crate::depth::{DepthBuffer, DepthTest, NoDepth};
@@ -17,7 +16,7 @@ use crate::walk::{Planes, Span};
 /// A Gouraud span's start and step: depth and three channels, each inside
 /// its field by the planes' margin over `n` pixels.
 fn span() -> impl Strategy<Value = ([i32; 4], [i32; 4], u32)> {
-    (1u32..40).prop_flat_map(|n| {
+    (1u32..150).prop_flat_map(|n| {
         let chan = |bits: u32| {
             let lim = (1i64 << (bits + 20)) - (1 << 19);
             (1i64 << 19..lim, 1i64 << 19..lim).prop_map(move |(a, b)| {
@@ -36,10 +35,37 @@ fn span() -> impl Strategy<Value = ([i32; 4], [i32; 4], u32)> {
     })
 }
 
-/// Draws span `(s, d, n)` on row 3 from column 2 of a 48 × 8 target into
+/// Draws span `(s, d, n)` on row 3 from column 2 of a `W` × 8 target into
 /// memory and into a mock display, both with row 3's depths `stored`
 /// beforehand (`None`: no depth test), and returns both targets' pixels
 /// and depths.
+/// The test target's width: spans cross blocks of pairs.
+const W: usize = 160;
+
+/// A `W` × 8 `DrawTarget` that refuses pixels outside it.
+struct Display(Vec<u16>);
+
+impl OriginDimensions for Display {
+    fn size(&self) -> Size {
+        Size::new(W as u32, 8)
+    }
+}
+
+impl DrawTarget for Display {
+    type Color = Rgb565;
+    type Error = Point;
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Point> {
+        for Pixel(p, c) in pixels {
+            let i = (0..W as i32).contains(&p.x).then_some(p.y * W as i32 + p.x);
+            let v = i
+                .and_then(|i| self.0.get_mut(usize::try_from(i).ok()?))
+                .ok_or(p)?;
+            *v = RawU16::from(c).into_inner();
+        }
+        Ok(())
+    }
+}
+
 fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 4] {
     // The planes at column 0 of row 0, so that the span's start is `s`.
     let planes = Planes {
@@ -54,12 +80,10 @@ fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 
         dy: 0,
         planes: &planes,
     };
-    let mut px = vec![0u16; 48 * 8];
-    let (mut z1, mut z2) = (vec![0u16; 48 * 8], vec![0u16; 48 * 8]);
-    let mut display = MockDisplay::<Rgb565>::new();
-    display.set_allow_overdraw(true);
-    display.clear(Rgb565::new(0, 0, 0)).unwrap();
-    let mut out = Memory::new(&mut px, 48, 0, (0, 0));
+    let mut px = vec![0u16; W * 8];
+    let (mut z1, mut z2) = (vec![0u16; W * 8], vec![0u16; W * 8]);
+    let mut display = Display(vec![0u16; W * 8]);
+    let mut out = Memory::new(&mut px, W as u32, 0, (0, 0));
     let mut sink = TargetSink {
         target: &mut display,
         corner: Point::zero(),
@@ -67,10 +91,10 @@ fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 
     };
     let (w1, w2) = match stored {
         Some(row) => {
-            let mut d1 = DepthBuffer::new(&mut z1, 48, 8).unwrap();
-            let mut d2 = DepthBuffer::new(&mut z2, 48, 8).unwrap();
-            d1.row(3, 0, 48).copy_from_slice(row);
-            d2.row(3, 0, 48).copy_from_slice(row);
+            let mut d1 = DepthBuffer::new(&mut z1, W as u32, 8).unwrap();
+            let mut d2 = DepthBuffer::new(&mut z2, W as u32, 8).unwrap();
+            d1.row(3, 0, W as u32).copy_from_slice(row);
+            d2.row(3, 0, W as u32).copy_from_slice(row);
             (
                 out.span(&mut d1, &span, &Gouraud).unwrap(),
                 sink.span(&mut d2, &span, &Gouraud).unwrap(),
@@ -82,27 +106,34 @@ fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 
         ),
     };
     assert_eq!(w1, w2, "pixels written");
-    let shown: Vec<u16> = (0..8)
-        .flat_map(|y| (0..48).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            display
-                .get_pixel(Point::new(x, y))
-                .map_or(0, |c| RawU16::from(c).into_inner())
-        })
-        .collect();
-    [px, shown, z1, z2]
+    [px, display.0, z1, z2]
 }
 
 proptest! {
     /// Without a depth test and through one that some pixels fail, both
     /// outputs write the same pixels, the same depths and the same count.
     #[test]
-    fn memory_and_draw_target_agree((s, d, n) in span(), stored in prop::collection::vec(0u16..=u16::MAX, 48)) {
+    fn memory_and_draw_target_agree((s, d, n) in span(), stored in prop::collection::vec(0u16..=u16::MAX, W)) {
         let [a, b, _, _] = both(s, d, n, None);
         prop_assert_eq!(a, b);
         let [a, b, za, zb] = both(s, d, n, Some(&stored));
         prop_assert_eq!(a, b);
         prop_assert_eq!(za, zb);
+    }
+
+    /// Without a depth test, Gouraud spans go two pixels at a time in
+    /// 16-bit lanes: each channel within one of its plane's `>> 20`.
+    #[test]
+    fn pairs_stay_within_one_of_the_planes((s, d, n) in span()) {
+        let [px, _, _, _] = both(s, d, n, None);
+        for k in 0..n as usize {
+            let got = px[3 * W + 2 + k];
+            let plane = |c: usize| s[c].wrapping_add(d[c].wrapping_mul(k as i32)) >> 20;
+            let ch = [(got >> 11) as i32, (got >> 5 & 63) as i32, (got & 31) as i32];
+            for c in 0..3 {
+                prop_assert!((ch[c] - plane(c + 1)).abs() <= 1, "pixel {}: {:?} against {}", k, ch, plane(c + 1));
+            }
+        }
     }
 }
 
