@@ -209,36 +209,39 @@ pub(crate) fn pair_run(l: [u32; 3], s: [u32; 3], row: &mut [u16]) -> [u32; 3] {
     l
 }
 
-/// A table of a triangle's rows ready for a row loop: the planes at column
-/// 0 of the current row, stepped by `gy` a row and `gx` a pixel, the rows'
-/// spans, and where each row's column 0 lies in the colour and depth
-/// stores (the same index in both). `repr(C)`: the loops in assembly read
-/// and update it (offsets 0, 16, 32, 48, 52, 56, 60, 64, 68, 72).
+/// A table of a triangle's rows ready for a row loop: the triangle's
+/// planes (read in place), the rows' spans, and where each row's column 0
+/// lies in the colour and depth stores (the same index in both).
+/// `repr(C)`: the loops in assembly read and update it at the offsets
+/// named in [`gouraud_depth_rows`].
 #[repr(C)]
 pub(crate) struct Rows<'a> {
+    /// The planes at column 0 of the current row (the loops' own).
     rowv: [i32; 4],
-    gy: [i32; 4],
-    gx: [i32; 4],
+    planes: *const Planes<4>,
+    /// The first row's distance from the planes' first.
+    dy: i32,
+    /// The next row's span, and the table's end.
     table: *const Row,
-    count: u32,
+    end: *const Row,
     cbase: *mut u16,
     zbase: *mut u16,
+    /// Bytes from a row to the next.
     stride: u32,
     covered: u32,
     failed: u32,
-    _stores: core::marker::PhantomData<(&'a [Row], &'a mut [u16])>,
+    _stores: core::marker::PhantomData<(&'a Planes<4>, &'a [Row], &'a mut [u16])>,
 }
 
 impl<'a> Rows<'a> {
     /// The rows of `table` (at least one), the first `dy` rows below the
-    /// `planes`' first (the first four attributes taken), in `buf` and
-    /// `zbuf`, row-major `width` pixels a row, column 0 of the first row at
-    /// index `first`.
+    /// `planes`' first, in `buf` and `zbuf`, row-major `width` pixels a
+    /// row, column 0 of the first row at index `first`.
     ///
     /// The caller has checked that every row's span lies in both stores:
     /// the loops write exactly those pixels.
-    pub(crate) fn new<const N: usize>(
-        planes: &Planes<N>,
+    pub(crate) fn new(
+        planes: &'a Planes<4>,
         dy: i32,
         table: &'a [Row],
         buf: &'a mut [u16],
@@ -246,14 +249,12 @@ impl<'a> Rows<'a> {
         first: i64,
         width: u32,
     ) -> Self {
-        let four = |a: &[i32; N]| core::array::from_fn(|k| if k < N { a[k] } else { 0 });
-        let (at, gx, gy) = (four(&planes.at), four(&planes.gx), four(&planes.gy));
         Rows {
-            rowv: core::array::from_fn(|k: usize| at[k].wrapping_add(gy[k].wrapping_mul(dy))),
-            gy,
-            gx,
+            rowv: [0; 4],
+            planes,
+            dy,
             table: table.as_ptr(),
-            count: table.len() as u32,
+            end: table.as_ptr_range().end,
             cbase: buf.as_mut_ptr().wrapping_offset(first as isize),
             zbase: zbuf.as_mut_ptr().wrapping_offset(first as isize),
             stride: 2 * width,
@@ -280,39 +281,46 @@ impl<'a> Rows<'a> {
 /// a row's span cost some 120 instructions of spills around it. The frame
 /// pointer `r7` and `r6`, which `asm!` may not name, are saved and used.
 /// Elsewhere the same loop in Rust.
+///
+/// [`Rows`]' offsets: `rowv` 0, `planes` 16, `dy` 20, `table` 24, `end`
+/// 28, `cbase` 32, `zbase` 36, `stride` 40, `covered` 44, `failed` 48;
+/// [`Planes`]': `at` 0, `gx` 16, `gy` 32.
 #[inline(never)]
 pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     #[cfg(fixshade_thumb2)]
-    // SAFETY: `run`'s table has `count ≥ 1` rows, each span within both
-    // stores (`Rows::new`'s contract); `run` is read and updated at the
-    // offsets of its `repr(C)` layout. r6 and r7 are pushed and popped
-    // around their use; sp is restored.
+    // SAFETY: `run`'s table has at least one row, each span within both
+    // stores (`Rows::new`'s contract); `run` and its planes are read (and
+    // `run` updated) at the offsets of their `repr(C)` layouts. r6 and r7
+    // are pushed and popped around their use; sp is restored.
     unsafe {
         core::arch::asm!(
             "push {{r6, r7}}",
             "mov r7, r0",
-            "ldr r8, [r7, #32]",
-            "ldr r9, [r7, #36]",
-            "ldr r10, [r7, #40]",
-            "ldr r11, [r7, #44]",
-            "ldm r7, {{r3, r4, r5, r6}}",
+            // The planes at column 0 of the first row: at + gy·dy.
+            "ldrd r12, r1, [r7, #16]",
+            "ldm r12!, {{r3, r4, r5, r6}}",
+            "ldm r12!, {{r8, r9, r10, r11}}",
+            "ldm r12, {{r0, r2, r12, lr}}",
+            "mla r3, r0, r1, r3",
+            "mla r4, r2, r1, r4",
+            "mla r5, r12, r1, r5",
+            "mla r6, lr, r1, r6",
             "1:",
-            "ldr r12, [r7, #48]",
+            "ldr r12, [r7, #24]",
             "ldm r12!, {{r0, r1}}",
-            "str r12, [r7, #48]",
+            "str r12, [r7, #24]",
             "cmp r1, #0",
             "ble 6f",
-            "ldr r12, [r7, #68]",
+            "ldr r12, [r7, #44]",
             "add r12, r1",
-            "str r12, [r7, #68]",
+            "str r12, [r7, #44]",
             "push {{r3, r4, r5, r6}}",
             "mla r3, r8, r0, r3",
             "mla r4, r9, r0, r4",
             "mla r5, r10, r0, r5",
             "mla r6, r11, r0, r6",
-            "ldr r2, [r7, #56]",
+            "ldrd r2, r12, [r7, #32]",
             "add r2, r2, r0, lsl #1",
-            "ldr r12, [r7, #60]",
             "add r0, r12, r0, lsl #1",
             "2:",
             "ldrh r12, [r0]",
@@ -335,31 +343,30 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
             "bne 2b",
             "pop {{r3, r4, r5, r6}}",
             "6:",
-            "add r12, r7, #16",
+            "ldr r12, [r7, #16]",
+            "add r12, #32",
             "ldm r12, {{r0, r1, r2, lr}}",
             "add r3, r0",
             "add r4, r1",
             "add r5, r2",
             "add r6, lr",
-            "add r12, r7, #56",
-            "ldm r12, {{r0, r1, r2}}",
+            "ldrd r0, r1, [r7, #32]",
+            "ldr r2, [r7, #40]",
             "add r0, r2",
             "add r1, r2",
-            "stm r12, {{r0, r1}}",
-            "ldr r0, [r7, #52]",
-            "subs r0, #1",
-            "str r0, [r7, #52]",
+            "strd r0, r1, [r7, #32]",
+            "ldrd r0, r1, [r7, #24]",
+            "cmp r0, r1",
             "bne 1b",
             "b 9f",
             "4:",
             "adds r0, #2",
             "adds r2, #2",
-            "ldr r12, [r7, #72]",
+            "ldr r12, [r7, #48]",
             "adds r12, #1",
-            "str r12, [r7, #72]",
+            "str r12, [r7, #48]",
             "b 3b",
             "9:",
-            "stm r7, {{r3, r4, r5, r6}}",
             "pop {{r6, r7}}",
             inout("r0") run as *mut Rows => _,
             out("r1") _,
@@ -376,49 +383,62 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
         );
     }
     #[cfg(fixshade_thumb1)]
-    // SAFETY: as above; lr holds `run` through the loop, r12 a row's end.
+    // SAFETY: as above; lr holds `run` through the loop, r12 a row's end;
+    // `rowv` holds the current row's planes.
     unsafe {
         core::arch::asm!(
             "push {{r6, r7}}",
             "mov lr, r0",
-            "ldr r6, [r0, #32]",
-            "mov r8, r6",
-            "ldr r6, [r0, #36]",
-            "mov r9, r6",
-            "ldr r6, [r0, #40]",
-            "mov r10, r6",
-            "ldr r6, [r0, #44]",
-            "mov r11, r6",
+            // The steps into r8–r11, the first row's planes into rowv.
+            "ldr r7, [r0, #16]",
+            "adds r7, #16",
+            "ldm r7!, {{r2, r3, r4, r5}}",
+            "mov r8, r2",
+            "mov r9, r3",
+            "mov r10, r4",
+            "mov r11, r5",
+            "ldm r7!, {{r2, r3, r4, r5}}",
+            "ldr r1, [r0, #20]",
+            "subs r7, #48",
+            "ldm r7!, {{r0, r6}}",
+            "muls r2, r1, r2",
+            "adds r2, r0",
+            "muls r3, r1, r3",
+            "adds r3, r6",
+            "ldm r7!, {{r0, r6}}",
+            "muls r4, r1, r4",
+            "adds r4, r0",
+            "muls r5, r1, r5",
+            "adds r5, r6",
+            "mov r7, lr",
+            "stm r7!, {{r2, r3, r4, r5}}",
             "1:",
             "mov r7, lr",
-            "ldr r6, [r7, #48]",
+            "ldr r6, [r7, #24]",
             "ldm r6!, {{r0, r1}}",
-            "str r6, [r7, #48]",
+            "str r6, [r7, #24]",
             "cmp r1, #0",
             "ble 6f",
-            "ldr r6, [r7, #68]",
+            "ldr r6, [r7, #44]",
             "adds r6, r6, r1",
-            "str r6, [r7, #68]",
-            "ldr r2, [r7, #0]",
+            "str r6, [r7, #44]",
+            "ldm r7!, {{r2, r3, r4, r5}}",
             "mov r6, r8",
             "muls r6, r0, r6",
             "adds r2, r2, r6",
-            "ldr r3, [r7, #4]",
             "mov r6, r9",
             "muls r6, r0, r6",
             "adds r3, r3, r6",
-            "ldr r4, [r7, #8]",
             "mov r6, r10",
             "muls r6, r0, r6",
             "adds r4, r4, r6",
-            "ldr r5, [r7, #12]",
             "mov r6, r11",
             "muls r6, r0, r6",
             "adds r5, r5, r6",
             "lsls r0, r0, #1",
-            "ldr r6, [r7, #56]",
+            "ldr r6, [r7, #16]",
             "adds r6, r6, r0",
-            "ldr r7, [r7, #60]",
+            "ldr r7, [r7, #20]",
             "adds r0, r0, r7",
             "lsls r7, r1, #1",
             "adds r7, r7, r6",
@@ -450,40 +470,36 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
             "cmp r1, r12",
             "bne 2b",
             "6:",
+            // rowv += gy; the bases down a row; on to the next span.
             "mov r7, lr",
-            "ldr r0, [r7, #0]",
-            "ldr r1, [r7, #16]",
-            "adds r0, r0, r1",
-            "str r0, [r7, #0]",
-            "ldr r0, [r7, #4]",
-            "ldr r1, [r7, #20]",
-            "adds r0, r0, r1",
-            "str r0, [r7, #4]",
-            "ldr r0, [r7, #8]",
+            "ldr r6, [r7, #16]",
+            "adds r6, #32",
+            "ldm r6!, {{r4, r5}}",
+            "ldm r7!, {{r0, r1, r2, r3}}",
+            "adds r0, r4",
+            "adds r1, r5",
+            "ldm r6!, {{r4, r5}}",
+            "adds r2, r4",
+            "adds r3, r5",
+            "subs r7, #16",
+            "stm r7!, {{r0, r1, r2, r3}}",
+            "ldr r0, [r7, #16]",
             "ldr r1, [r7, #24]",
             "adds r0, r0, r1",
-            "str r0, [r7, #8]",
-            "ldr r0, [r7, #12]",
-            "ldr r1, [r7, #28]",
+            "str r0, [r7, #16]",
+            "ldr r0, [r7, #20]",
             "adds r0, r0, r1",
-            "str r0, [r7, #12]",
-            "ldr r0, [r7, #56]",
-            "ldr r1, [r7, #64]",
-            "adds r0, r0, r1",
-            "str r0, [r7, #56]",
-            "ldr r0, [r7, #60]",
-            "adds r0, r0, r1",
-            "str r0, [r7, #60]",
-            "ldr r0, [r7, #52]",
-            "subs r0, #1",
-            "str r0, [r7, #52]",
+            "str r0, [r7, #20]",
+            "ldr r0, [r7, #8]",
+            "ldr r1, [r7, #12]",
+            "cmp r0, r1",
             "bne 1b",
             "b 9f",
             "4:",
             "mov r7, lr",
-            "ldr r6, [r7, #72]",
+            "ldr r6, [r7, #48]",
             "adds r6, #1",
-            "str r6, [r7, #72]",
+            "str r6, [r7, #48]",
             "b 3b",
             "8:",
             "movs r7, #0",
@@ -506,9 +522,14 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     }
     #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
     {
-        // SAFETY: `Rows::new`'s contract: each row's span lies in both
-        // stores, at `base + x0 ..` for that row's bases.
-        let spans = unsafe { core::slice::from_raw_parts(run.table, run.count as usize) };
+        // SAFETY: `Rows::new`'s contract: the planes and the table are
+        // borrowed for `run`'s life; each row's span lies in both stores,
+        // at `base + x0 ..` for that row's bases.
+        let p = unsafe { &*run.planes };
+        let spans = unsafe {
+            core::slice::from_raw_parts(run.table, run.end.offset_from(run.table) as usize)
+        };
+        run.rowv = core::array::from_fn(|k| p.at[k].wrapping_add(p.gy[k].wrapping_mul(run.dy)));
         for r in spans {
             if r.n > 0 {
                 run.covered += r.n as u32;
@@ -524,9 +545,8 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
                         ),
                     )
                 };
-                let mut a: [i32; 4] = core::array::from_fn(|k| {
-                    run.rowv[k].wrapping_add(run.gx[k].wrapping_mul(r.x0))
-                });
+                let mut a: [i32; 4] =
+                    core::array::from_fn(|k| run.rowv[k].wrapping_add(p.gx[k].wrapping_mul(r.x0)));
                 for (px, z) in row.iter_mut().zip(zrow.iter_mut()) {
                     let d16 = (a[0] >> 12).clamp(0, 0xFFFF);
                     if d16 < *z as i32 {
@@ -535,12 +555,12 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
                     } else {
                         run.failed += 1;
                     }
-                    for (v, s) in a.iter_mut().zip(&run.gx) {
+                    for (v, s) in a.iter_mut().zip(&p.gx) {
                         *v = v.wrapping_add(*s);
                     }
                 }
             }
-            for (v, s) in run.rowv.iter_mut().zip(&run.gy) {
+            for (v, s) in run.rowv.iter_mut().zip(&p.gy) {
                 *v = v.wrapping_add(*s);
             }
             run.cbase = run.cbase.wrapping_add(run.stride as usize / 2);

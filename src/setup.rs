@@ -34,6 +34,8 @@
 //! plane), from the exact division, kept modulo 2³². Both are functions of
 //! the vertices alone, the same on every core.
 
+use core::mem::MaybeUninit;
+
 use crate::num::division::{floor_div, recip_fast};
 use crate::num::widening::{mul_i32, mul_i32_i16, mul_i32_u32};
 use crate::platform;
@@ -69,17 +71,24 @@ pub(crate) fn area<const N: usize>(v: &[Vtx<N>; 3]) -> i32 {
     (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y)
 }
 
-/// Sets up triangle `v` of doubled area `area` (not 0) on `rect`, its
-/// planes into `planes`: `None` where it has no sample row in `rect`'s
-/// rows. Attributes below `first` are left out (their planes are 0).
-#[inline(always)]
-pub(crate) fn set_up<const N: usize>(
+/// A set-up triangle: its planes and its walk.
+pub(crate) struct Triangle<const N: usize> {
+    pub(crate) planes: Planes<N>,
+    pub(crate) walk: Walk,
+}
+
+/// Sets up triangle `v` of doubled area `area` (not 0) on `rect` into
+/// `slot`, or `None` where it has no sample row in `rect`'s rows. Out of
+/// line, into the caller's memory: the set-up's values get the registers,
+/// and the caller reads the triangle where it lies, not copied into its
+/// own.
+#[inline(never)]
+pub(crate) fn set_up<'s, const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
-    first: usize,
     rect: &Rect,
-    planes: &mut Planes<N>,
-) -> Option<Walk> {
+    slot: &'s mut MaybeUninit<Triangle<N>>,
+) -> Option<&'s mut Triangle<N>> {
     // Sorted top to bottom.
     let (mut t, mut m, mut b) = (&v[0], &v[1], &v[2]);
     if m.y < t.y {
@@ -97,20 +106,9 @@ pub(crate) fn set_up<const N: usize>(
     if r_top > r_last {
         return None;
     }
+    let planes = planes(v, area, r_top);
     // Which side the long edge t → b bounds: the middle vertex's side of it.
     let cross = (b.x - t.x) * (m.y - t.y) - (b.y - t.y) * (m.x - t.x);
-    // The pixel holding vertex 0, and its centre's offset from it.
-    let (c0, r0) = (v[0].x >> 4, v[0].y >> 4);
-    let o = (16 * c0 + 8 - v[0].x, 16 * r0 + 8 - v[0].y);
-    let off = gradients(v, area, first, o, planes);
-    // The plane at that centre, then at column 0 of the first row
-    // (wrapping: see the module's text).
-    for k in first..N {
-        let base = (v[0].a[k] << 4).wrapping_add(off[k]);
-        planes.at[k] = base
-            .wrapping_sub(planes.gx[k].wrapping_mul(c0))
-            .wrapping_add(planes.gy[k].wrapping_mul(r_top - r0));
-    }
     // The edges at the first row: the long one, and the short one that
     // holds that row.
     let sy = 16 * r_top + 8;
@@ -127,23 +125,48 @@ pub(crate) fn set_up<const N: usize>(
     } else {
         (short, long)
     };
-    Some(Walk {
+    // Columns whose samples lie in [min x, max x]: within the rectangle's,
+    // the spans need no clamp.
+    let (lo, hi) = (t.x.min(m.x).min(b.x), t.x.max(m.x).max(b.x));
+    let walk = Walk {
         y: r_top,
         last: r_last,
         cols: (rect.c0, rect.c1),
+        clamp: (lo + 7) >> 4 < rect.c0 || (hi - 8) >> 4 > rect.c1,
         left,
         right,
         long_left,
         // The first row whose sample lies at or below the middle vertex.
         switch: if upper { (m.y + 7) >> 4 } else { i32::MAX },
         lower: ((m.x, m.y), (b.x, b.y)),
-    })
+    };
+    Some(slot.write(Triangle { planes, walk }))
 }
 
-/// The gradients per pixel of attributes `first..N` (units of 2⁻⁴ of an
-/// attribute), from the barycentric coordinates' gradients, into `planes`;
-/// returns the planes' change from vertex 0 to the centre `o` sixteenths
-/// from it (`|o| ≤ 8`), `round((gx·oₓ + gy·o_y)/16)` modulo 2³².
+/// The planes of triangle `v` (doubled area `area`, not 0), anchored at
+/// column 0 of row `r_top`: each attribute's value at the centre of the
+/// pixel holding vertex 0 (`(c₀, r₀)`), from vertex 0's and the gradients,
+/// moved there (wrapping: see the module's text).
+#[inline(always)]
+fn planes<const N: usize>(v: &[Vtx<N>; 3], area: i32, r_top: i32) -> Planes<N> {
+    let (c0, r0) = (v[0].x >> 4, v[0].y >> 4);
+    let o = (16 * c0 + 8 - v[0].x, 16 * r0 + 8 - v[0].y);
+    let (gx, gy, off) = match gradients(v, area) {
+        Some((gx, gy)) => (gx, gy, core::array::from_fn(|k| offset(gx[k], gy[k], o))),
+        None => steep_gradients(v, area, o),
+    };
+    let at = core::array::from_fn(|k| {
+        (v[0].a[k] << 4)
+            .wrapping_add(off[k])
+            .wrapping_sub(gx[k].wrapping_mul(c0))
+            .wrapping_add(gy[k].wrapping_mul(r_top - r0))
+    });
+    Planes { at, gx, gy }
+}
+
+/// The gradients per pixel of the attributes (units of 2⁻⁴ of an
+/// attribute), from the barycentric coordinates' gradients, or `None`
+/// where they do not fit this form.
 ///
 /// Vertex `k`'s weight `λₖ` has gradients `∂λ₁/∂x = dy₂/A`, `∂λ₁/∂y =
 /// −dx₂/A`, `∂λ₂/∂x = −dy₁/A`, `∂λ₂/∂y = dx₁/A` (per sixteenth; `A` the
@@ -155,16 +178,9 @@ pub(crate) fn set_up<const N: usize>(
 /// (times `r`'s common relative error, 2⁻²⁷), the gradient within `|d₁| +
 /// |d₂|` units of 2⁻²⁴ plus its rounding's ½. A triangle whose `Λ`
 /// or gradients do not fit (a sliver, a steep plane) takes the exact
-/// quotients ([`steep_gradients`]). Out of line: its products get the
-/// registers, not the set-up's other values.
-#[inline(never)]
-fn gradients<const N: usize>(
-    v: &[Vtx<N>; 3],
-    area: i32,
-    first: usize,
-    o: (i32, i32),
-    planes: &mut Planes<N>,
-) -> [i32; N] {
+/// quotients ([`steep_gradients`]).
+#[inline(always)]
+fn gradients<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<([i32; N], [i32; N])> {
     let (dx1, dy1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs();
@@ -173,32 +189,20 @@ fn gradients<const N: usize>(
     // Λ, so it scales each plane's change across the triangle alone.
     let r = recip_fast(a << n);
     // Λ·2²⁴ = 256·side·2²⁴/|A| = side·2ⁿ⁺³²·r/2⁶³ = side·r/2³¹⁻ⁿ.
-    let sides = [dy2, -dx2, -dy1, dx1];
     let sign = if area < 0 { -1 } else { 1 };
-    let mut lam = [0i32; 4];
-    for (l, &s) in lam.iter_mut().zip(&sides) {
-        // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31.
-        match shr_to_i32(mul_i32_u32(s * sign, r), 31 - n) {
-            Some(p) => *l = p,
-            None => return steep_gradients(v, area, first, o, planes),
-        }
-    }
-    let mut off = [0i32; N];
-    for k in first..N {
+    // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31.
+    let lam = |s: i32| shr_to_i32(mul_i32_u32(s * sign, r), 31 - n);
+    let (l1x, l1y, l2x, l2y) = (lam(dy2)?, lam(-dx2)?, lam(-dy1)?, lam(dx1)?);
+    let (mut gx, mut gy) = ([0i32; N], [0i32; N]);
+    for k in 0..N {
         let d1 = v[1].a[k] - v[0].a[k];
         let d2 = v[2].a[k] - v[0].a[k];
         // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
         let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
-        match (g(lam[0], lam[2]), g(lam[1], lam[3])) {
-            (Some(x), Some(y)) => {
-                planes.gx[k] = x;
-                planes.gy[k] = y;
-                off[k] = offset(x as i64, y as i64, o);
-            }
-            _ => return steep_gradients(v, area, first, o, planes),
-        }
+        gx[k] = g(l1x, l2x)?;
+        gy[k] = g(l1y, l2y)?;
     }
-    off
+    Some((gx, gy))
 }
 
 /// `⌊p/2ᵏ⌋` (`k ≤ 31`) if it fits `i32`: from `p`'s 32-bit halves, a
@@ -211,32 +215,30 @@ fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
     ((hi >> k) == (q >> 31)).then_some(q)
 }
 
-/// `round((gx·oₓ + gy·o_y)/16)` modulo 2³² (`|g| < 2⁵¹`, `|o| ≤ 8`: each
-/// product below 2⁵⁴).
+/// `round((gx·oₓ + gy·o_y)/16)` (`|o| ≤ 8`): the plane's change from a
+/// vertex to its pixel's centre.
 #[inline(always)]
-fn offset(gx: i64, gy: i64, o: (i32, i32)) -> i32 {
-    if let (Ok(x), Ok(y)) = (i32::try_from(gx), i32::try_from(gy)) {
-        ((mul_i32_i16(x, o.0 as i16) + mul_i32_i16(y, o.1 as i16) + 8) >> 4) as i32
-    } else {
-        ((gx * o.0 as i64 + gy * o.1 as i64 + 8) >> 4) as i32
-    }
+fn offset(gx: i32, gy: i32, o: (i32, i32)) -> i32 {
+    ((mul_i32_i16(gx, o.0 as i16) + mul_i32_i16(gy, o.1 as i16) + 8) >> 4) as i32
 }
 
 /// [`gradients`] from the exact quotients `round(256·N/A)`, `N` the
 /// attribute differences' cross products with the sides (below 2⁴²), kept
-/// modulo 2³²: a sliver's or a steep plane's (rare).
+/// modulo 2³²: a sliver's or a steep plane's (rare, out of line); with
+/// the offsets to the centre `o` sixteenths from vertex 0, from the
+/// quotients before they are wrapped (the `/16` does not commute with
+/// the wrap), modulo 2³².
 #[inline(never)]
 fn steep_gradients<const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
-    first: usize,
     o: (i32, i32),
-    planes: &mut Planes<N>,
-) -> [i32; N] {
+) -> ([i32; N], [i32; N], [i32; N]) {
     let (dx1, dy1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs() as i64;
-    // |num| < 2⁴²: the quotients below 2⁵¹.
+    // |num| < 2⁴²: the quotients below 2⁵¹, their offsets' products
+    // below 2⁵⁴.
     let q = |num: i64| {
         let q = floor_div(512 * num + a, 2 * a);
         if area < 0 {
@@ -245,19 +247,18 @@ fn steep_gradients<const N: usize>(
             q
         }
     };
-    let mut off = [0i32; N];
-    for k in first..N {
+    let (mut gx, mut gy, mut off) = ([0i32; N], [0i32; N], [0i32; N]);
+    for k in 0..N {
         let d1 = (v[1].a[k] - v[0].a[k]) as i64;
         let d2 = (v[2].a[k] - v[0].a[k]) as i64;
         let (x, y) = (
             q(d1 * dy2 as i64 - d2 * dy1 as i64),
             q(d2 * dx1 as i64 - d1 * dx2 as i64),
         );
-        planes.gx[k] = x as i32;
-        planes.gy[k] = y as i32;
-        off[k] = offset(x, y, o);
+        (gx[k], gy[k]) = (x as i32, y as i32);
+        off[k] = ((x * o.0 as i64 + y * o.1 as i64 + 8) >> 4) as i32;
     }
-    off
+    (gx, gy, off)
 }
 
 #[cfg(test)]
@@ -332,8 +333,7 @@ mod tests {
             r0: 0,
             r1: h - 1,
         };
-        let mut planes = Planes::default();
-        if let Some(walk) = set_up(v, a, 0, &rect, &mut planes) {
+        if let Some(Triangle { planes, walk }) = set_up(v, a, &rect, &mut MaybeUninit::uninit()) {
             walk.run(&planes, |s| {
                 got.push((s.y, s.x0, s.x0 + s.n as i32 - 1, s.start()[0]));
                 Ok::<(), ()>(())
@@ -417,8 +417,9 @@ mod tests {
             if a == 0 {
                 continue;
             }
-            let mut planes = Planes::default();
-            if let Some(w) = set_up(&v, a, 0, &rect, &mut planes) {
+            if let Some(Triangle { planes, walk: w }) =
+                set_up(&v, a, &rect, &mut MaybeUninit::uninit())
+            {
                 w.run(&planes, |s| {
                     for k in 0..s.n as i32 {
                         let p = s.start()[0].wrapping_add(s.step()[0].wrapping_mul(k));

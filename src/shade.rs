@@ -21,7 +21,7 @@ use crate::setup::{self, Rect, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
-use crate::walk::{Planes, CHUNK};
+use crate::walk::CHUNK;
 
 /// One draw's constants and what it draws into: the vertex stage, the
 /// switches, the pixels drawn.
@@ -248,11 +248,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// The three corners' lit colours (Gouraud), for the back if `back`.
     #[inline(always)]
     fn shades(&self, c: &mut Corners, back: bool, stats: &mut DrawStats) -> [Shade; 3] {
-        let mut one = |k: usize| match c.cache.get_mut(c.slot[k]) {
+        [
+            self.corner_shade(c, 0, back, stats),
+            self.corner_shade(c, 1, back, stats),
+            self.corner_shade(c, 2, back, stats),
+        ]
+    }
+
+    /// Corner `k`'s lit colour: the cached one, or lit now (out of line).
+    #[inline(always)]
+    fn corner_shade(&self, c: &mut Corners, k: usize, back: bool, stats: &mut DrawStats) -> Shade {
+        match c.cache.get_mut(c.slot[k]) {
             Some(v) => self.stage.shade(v, c.vertex[k], back, stats),
             None => Shade::BLACK,
-        };
-        [one(0), one(1), one(2)]
+        }
     }
 
     /// Sets up and walks one triangle `v` of doubled area `area` on
@@ -275,9 +284,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if area == 0 {
             return Ok(());
         }
-        let first = if D::ENABLED { 0 } else { 1 };
-        let mut planes = Planes::default();
-        let Some(mut walk) = setup::set_up(v, area, first, rect, &mut planes) else {
+        let mut slot = MaybeUninit::uninit();
+        let Some(setup::Triangle { planes, walk }) = setup::set_up(v, area, rect, &mut slot) else {
             return Ok(());
         };
         stats.drawn = stats.drawn.saturating_add(1);
@@ -290,7 +298,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             if rows.is_empty() {
                 break Ok(());
             }
-            match out.rows(depth, rows, (y, y - top), walk.cols, &planes, sh) {
+            match out.rows(depth, rows, (y, y - top), walk.cols, planes, sh) {
                 Ok(w) => pixels += w,
                 Err(e) => break Err(e),
             }

@@ -71,12 +71,24 @@ pub(crate) trait Shader<const N: usize>: Sized {
         fill_depth(self, row, zrow, &s.start(), s.step(), at)
     }
 
-    /// The rows of `run` through the depth test, colour and depth laid out
-    /// alike, by a loop of the platform's (`None`: this shader has none,
-    /// and the rows go span by span).
+    /// The rows of `table` on `planes` (the first `dy` rows below their
+    /// first) through the depth test, colour and depth laid out alike
+    /// (`Rows::new`'s contract), by a loop of the platform's: the pixels
+    /// written, or `None` where this shader has none (the rows then go
+    /// span by span).
     #[inline(always)]
-    fn rows_depth(&self, run: &mut platform::Rows) -> Option<u32> {
-        let _ = run;
+    #[allow(clippy::too_many_arguments)]
+    fn rows_depth(
+        &self,
+        planes: &Planes<N>,
+        dy: i32,
+        table: &[Row],
+        buf: &mut [u16],
+        zbuf: &mut [u16],
+        first: i64,
+        width: u32,
+    ) -> Option<u32> {
+        let _ = (planes, dy, table, buf, zbuf, first, width);
         None
     }
 }
@@ -109,8 +121,18 @@ impl Shader<4> for Gouraud {
 
     /// The platform's loop (assembly on the Cortex-M cores).
     #[inline(always)]
-    fn rows_depth(&self, run: &mut platform::Rows) -> Option<u32> {
-        Some(platform::gouraud_depth_rows(run))
+    fn rows_depth(
+        &self,
+        planes: &Planes<4>,
+        dy: i32,
+        table: &[Row],
+        buf: &mut [u16],
+        zbuf: &mut [u16],
+        first: i64,
+        width: u32,
+    ) -> Option<u32> {
+        let mut run = platform::Rows::new(planes, dy, table, buf, zbuf, first, width);
+        Some(platform::gouraud_depth_rows(&mut run))
     }
 }
 
@@ -489,10 +511,9 @@ impl Out for Memory<'_> {
                     let last = first + (rows.len() as i64 - 1) * self.width as i64;
                     let len = self.buf.len().min(zbuf.len()) as i64;
                     if first + cols.0 as i64 >= 0 && last + (cols.1 as i64) < len {
-                        let mut run = platform::Rows::new(
-                            planes, dy, rows, self.buf, zbuf, first, self.width,
-                        );
-                        if let Some(w) = sh.rows_depth(&mut run) {
+                        if let Some(w) =
+                            sh.rows_depth(planes, dy, rows, self.buf, zbuf, first, self.width)
+                        {
                             return Ok(w);
                         }
                     }

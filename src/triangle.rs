@@ -52,26 +52,27 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if area == 0 || (area > 0 && self.options.cull) {
             return Ok(());
         }
-        if !self.meets(&p) {
+        let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
+        let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
+        let (lo, hi) = ((lo(0), lo(1)), (hi(0), hi(1)));
+        if !self.meets(lo, hi) {
             return Ok(());
         }
-        if snap_may_flip(area, &p) && self.turned_over(c, area) {
+        if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(c, area) {
             return Ok(());
         }
         self.whole::<M, O, D>(c, &p, area, out, depth, stats)
     }
 
-    /// Whether the box of window positions `p` holds a pixel centre of the
-    /// pixels drawn: the cheap test that spares off-screen and tiny
-    /// triangles their lighting and set-up. Sample `16x + 8` lies in
-    /// `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
+    /// Whether the box `lo ..= hi` of the window positions holds a pixel
+    /// centre of the pixels drawn: the cheap test that spares off-screen
+    /// and tiny triangles their lighting and set-up. Sample `16x + 8` lies
+    /// in `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
     #[inline(always)]
-    fn meets(&self, p: &[[i32; 3]; 3]) -> bool {
+    fn meets(&self, lo: (i32, i32), hi: (i32, i32)) -> bool {
         let r = &self.rect;
-        let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
-        let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
-        let (x0, x1) = (((lo(0) + 7) >> 4).max(r.c0), ((hi(0) - 8) >> 4).min(r.c1));
-        let (y0, y1) = (((lo(1) + 7) >> 4).max(r.r0), ((hi(1) - 8) >> 4).min(r.r1));
+        let (x0, x1) = (((lo.0 + 7) >> 4).max(r.c0), ((hi.0 - 8) >> 4).min(r.c1));
+        let (y0, y1) = (((lo.1 + 7) >> 4).max(r.r0), ((hi.1 - 8) >> 4).min(r.r1));
         x0 <= x1 && y0 <= y1
     }
 
@@ -90,9 +91,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     }
 }
 
-/// Whether snapping may have given the triangle of window positions `w` a
-/// doubled area `a` of another sign than its unsnapped positions have, or
-/// made it zero.
+/// Whether snapping may have given a triangle of window positions whose
+/// box measures `extent` a doubled area `a` of another sign than its
+/// unsnapped positions have, or made it zero.
 ///
 /// Each unsnapped coordinate `x` becomes `X`, within `½ + ε` of it (`ε`
 /// the unsnapped value's own error, far below 1/16). The snapped corner is
@@ -103,10 +104,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 /// triangle inside a square of side `1 + 2ε`: `|A − a|` is at most
 /// `(½ + ε)·p + (1 + 2ε)²`, `p` the sum of `|dx| + |dy|` over the three
 /// sides. With `ε ≤ 1/16`, when `2|a| > p + p/8 + 3`, `A` has `a`'s sign.
-/// Coordinates within the guard band: `p < 2¹⁸`.
+/// Around a triangle the sides' `|dx|` add up to twice its box's width
+/// (each coordinate is passed twice, from its minimum to its maximum and
+/// back), so `p` is twice the box's width and height. Coordinates within
+/// the guard band: `p < 2¹⁸`.
 #[inline(always)]
-fn snap_may_flip(a: i32, w: &[[i32; 3]; 3]) -> bool {
-    let side = |j: usize, k: usize| (w[k][0] - w[j][0]).abs() + (w[k][1] - w[j][1]).abs();
-    let p = side(0, 1) + side(1, 2) + side(2, 0);
+fn snap_may_flip(a: i32, extent: (i32, i32)) -> bool {
+    let p = 2 * (extent.0 + extent.1);
     2 * a.unsigned_abs() <= (p + (p >> 3) + 3) as u32
 }

@@ -22,6 +22,7 @@
 use core::mem::MaybeUninit;
 
 use crate::num::division::Divisor;
+use crate::platform;
 
 /// One edge's column bound, stepped row by row: `q = ⌈n / D⌉` with `n =
 /// q·D − rem`, `0 ≤ rem < D`, `D = 16·dy`.
@@ -111,8 +112,10 @@ pub(crate) struct Walk {
     /// The next row, and the last.
     pub(crate) y: i32,
     pub(crate) last: i32,
-    /// The columns drawn.
+    /// The columns drawn, and whether a span may reach past them (else
+    /// the spans are not clamped: the triangle lies within the columns).
     pub(crate) cols: (i32, i32),
+    pub(crate) clamp: bool,
     /// The left and right edges at row `y`.
     pub(crate) left: Edge,
     pub(crate) right: Edge,
@@ -161,7 +164,6 @@ impl Walk {
     /// Cortex-M4.)
     #[inline(always)]
     pub(crate) fn fill<'r>(&mut self, rows: &'r mut [MaybeUninit<Row>; CHUNK]) -> &'r [Row] {
-        let (c0, c1) = self.cols;
         let mut k = 0;
         while k < CHUNK && self.y <= self.last {
             if self.y == self.switch {
@@ -172,15 +174,40 @@ impl Walk {
                     self.left = e;
                 }
             }
-            let x0 = self.left.q.max(c0);
-            rows[k].write(Row {
-                x0,
-                n: (self.right.q - 1).min(c1) - x0 + 1,
-            });
-            self.left.advance();
-            self.right.advance();
-            self.y += 1;
-            k += 1;
+            // The rows up to the switch, the last or the table's end, in
+            // a loop of their own, the edges in locals.
+            let mut stop = (self.last + 1).min(self.y + (CHUNK - k) as i32);
+            if self.switch > self.y {
+                stop = stop.min(self.switch);
+            }
+            let m = (stop - self.y) as usize;
+            let (mut l, mut r) = (self.left, self.right);
+            let out = rows.get_mut(k..k + m).unwrap_or_default();
+            if self.clamp {
+                let (c0, c1) = self.cols;
+                for row in out {
+                    let x0 = l.q.max(c0);
+                    row.write(Row {
+                        x0,
+                        n: (r.q - 1).min(c1) - x0 + 1,
+                    });
+                    l.advance();
+                    r.advance();
+                    platform::keep_loop_rolled();
+                }
+            } else {
+                for row in out {
+                    row.write(Row {
+                        x0: l.q,
+                        n: r.q - l.q,
+                    });
+                    l.advance();
+                    r.advance();
+                    platform::keep_loop_rolled();
+                }
+            }
+            (self.left, self.right, self.y) = (l, r, stop);
+            k += m;
         }
         // SAFETY: the first `k` rows were written just above.
         unsafe { core::slice::from_raw_parts(rows.as_ptr().cast::<Row>(), k) }

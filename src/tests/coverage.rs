@@ -6,9 +6,10 @@
 //! every covered pixel lie within the documented distance of the vertex
 //! values, out to the guard band and the attributes' bound.
 
-use crate::setup::{area, set_up, Rect, Vtx, ATTR};
+use core::mem::MaybeUninit;
+
+use crate::setup::{area, set_up, Rect, Triangle, Vtx, ATTR};
 use crate::vertex::GUARD;
-use crate::walk::Planes;
 use proptest::prelude::*;
 
 /// `E_ab(p)`, y down.
@@ -60,8 +61,7 @@ fn kernel(v: [(i64, i64); 3], size: i64, rows: (i64, i64)) -> Vec<(i64, i64)> {
         r0: rows.0 as i32,
         r1: rows.1 as i32,
     };
-    let mut planes = Planes::default();
-    if let Some(walk) = set_up(&t, a, 0, &rect, &mut planes) {
+    if let Some(Triangle { planes, walk }) = set_up(&t, a, &rect, &mut MaybeUninit::uninit()) {
         walk.run(&planes, |s| {
             out.extend((s.x0..s.x0 + s.n as i32).map(|x| (x as i64, s.y as i64)));
             Ok::<(), ()>(())
@@ -165,8 +165,7 @@ proptest! {
         let mut whole = Vec::new();
         for rows in [(rect.r0, rect.r1), (band, band + 3)] {
             let mut got = Vec::new();
-            let mut planes = Planes::default();
-            if let Some(w) = set_up(&v, ar, 0, &Rect { r0: rows.0, r1: rows.1, ..rect }, &mut planes) {
+            if let Some(Triangle { planes, walk: w }) = set_up(&v, ar, &Rect { r0: rows.0, r1: rows.1, ..rect }, &mut MaybeUninit::uninit()) {
                 w.run(&planes, |s| {
                     for k in 0..s.n as i32 {
                         let (x, y) = (s.x0 + k, s.y);
