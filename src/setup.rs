@@ -106,7 +106,11 @@ pub(crate) fn set_up<'s, const N: usize>(
     if r_top > r_last {
         return None;
     }
-    let planes = planes(v, area, r_top);
+    // The planes into the slot as soon as they are made: they hold no
+    // register while the edges are made.
+    let out = slot.as_mut_ptr();
+    // SAFETY: `out` points to the slot, valid for writes.
+    unsafe { core::ptr::addr_of_mut!((*out).planes).write(planes(v, area, r_top)) };
     // Which side the long edge t → b bounds: the middle vertex's side of it.
     let cross = (b.x - t.x) * (m.y - t.y) - (b.y - t.y) * (m.x - t.x);
     // The edges at the first row: the long one, and the short one that
@@ -140,7 +144,11 @@ pub(crate) fn set_up<'s, const N: usize>(
         switch: if upper { (m.y + 7) >> 4 } else { i32::MAX },
         lower: ((m.x, m.y), (b.x, b.y)),
     };
-    Some(slot.write(Triangle { planes, walk }))
+    // SAFETY: as above; with the planes written, the slot is initialised.
+    unsafe {
+        core::ptr::addr_of_mut!((*out).walk).write(walk);
+        Some(slot.assume_init_mut())
+    }
 }
 
 /// The planes of triangle `v` (doubled area `area`, not 0), anchored at
