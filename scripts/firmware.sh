@@ -20,7 +20,9 @@
 #     the report fails (exit 1, after writing it) where any build drawn by
 #     the draw call differs from its explicit-call build: a function's
 #     size, .text or a draw's instructions (firmware/host/src/report/draw_call.rs);
-#  6. writes report/firmware_counts.json and report/firmware.md (into
+#  6. profiles S1 and S2 on both cores (scripts/firmware_profile.sh; S1's
+#     per-address counts kept for the report's stage table);
+#  7. writes report/firmware_counts.json and report/firmware.md (into
 #     $FIRMWARE_REPORT instead if set), with tgx's counts beside ours from
 #     $FIRMWARE_PEERS_TSV (default firmware/peers/tgx.tsv; the peer
 #     harness's arm.tsv works too).
@@ -184,7 +186,10 @@ fi
 echo "== profiles: where S1's and S2's instructions go"
 for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
     for n in 0 1; do
-        CARGO_TARGET_DIR_FW=$TGT FIRMWARE_OUT=$OUT scripts/firmware_profile.sh $t $n 12 \
+        # S1's per-address counts are kept for the report's stage table.
+        keep=""
+        [ $n = 0 ] && keep="$OUT/$t/profile_0_raw"
+        KEEP_PROFILE=$keep CARGO_TARGET_DIR_FW=$TGT FIRMWARE_OUT=$OUT scripts/firmware_profile.sh $t $n 12 \
             > "$OUT/$t/profile_$n.txt"
     done
 done

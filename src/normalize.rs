@@ -68,6 +68,7 @@
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
 use crate::num::widening::mul_hi32;
+use crate::platform;
 use crate::vector::{Unit3, UNIT_ONE};
 
 /// `round((1/√X_k − c_k)·2¹⁵)` at the nodes `X_k = ¼ + k/64`, `k = 0..=48`,
@@ -184,7 +185,7 @@ pub(crate) fn normalize(v: [i32; 3]) -> Option<Unit3> {
     if m == 0 {
         return None;
     }
-    let top = 31 - m.leading_zeros(); // m ≥ 1 → top ∈ [0, 31]
+    let top = 31 - platform::leading_zeros(m); // m ≥ 1 → top ∈ [0, 31]
     let b = if top <= B_TOP {
         // a < 2^(top+1) → b < 2^20, exact.
         let sh = B_TOP - top;

@@ -93,6 +93,7 @@
 //! with every intermediate bounded in the comments below, so no input (any
 //! `u32` δ, any exponent) can overflow or panic, in debug builds included.
 
+use crate::platform;
 use crate::vector::FormatError;
 
 /// Raw value of 1.0 in the `Q.28` input format.
@@ -416,7 +417,7 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     // lz ∈ [4, 32] and k ∈ [0, 28]. If x − 1 > 0 its top bit is bit 31 − lz,
     // so 2^(27−k) ≤ x − 1 < 2^(28−k), i.e. 2^(27−k) < x ≤ 2^(28−k); if
     // x = 1 then k = 28. Either way x << k ∈ (2^27, 2^28]: no bits lost.
-    let k = (x - 1).leading_zeros() - 4;
+    let k = platform::leading_zeros(x - 1) - 4;
     let m = x << k;
     // d = 1 − m ∈ [0, 2^27) in Q.28, i.e. [0, 1/2). For k = 0, d = δ.
     let d = ONE_Q28 - m;

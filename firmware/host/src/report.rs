@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::Path;
 
+mod budgets;
 mod draw_call;
 
 /// Cycles per instruction assumed for the estimates (see `ESTIMATE_BASIS`).
@@ -106,6 +107,7 @@ struct Frame {
     drawn: u64,
     pixels: u64,
     vertices: u64,
+    lit: u64,
     instructions: u64,
     stack: u64,
 }
@@ -133,6 +135,7 @@ fn frames(dir: &Path) -> Result<Vec<Frame>, String> {
                 drawn: num(&f, "drawn")?,
                 pixels: num(&f, "pixels")?,
                 vertices: num(&f, "vertices")?,
+                lit: num(&f, "lit")?,
                 instructions: n,
                 stack: num(&f, "stack")?,
             })
@@ -350,38 +353,10 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     );
 
     let find = |v: &[Frame], n: &str| v.iter().find(|f| f.name == n).map(|f| f.instructions);
-    let s2 = find(&m4, "s2_gouraud").ok_or("no s2_gouraud")?;
-    let s1m0 = find(&m0, "s1_gouraud").ok_or("no s1_gouraud")?;
-    // The span loop as linked: `PairGouraud::fill_row`'s own count in the
-    // M4 profile of S2 (all but the pixels of spans under 16 pixels, at the
-    // ends of the quad's diagonal, are filled there: a few hundred), its
-    // entry and the lanes' re-anchoring included.
-    let fill_row = read(&raw.join("thumbv7em-none-eabihf").join("profile_1.txt"))?
-        .lines()
-        .find(|l| l.contains("PairGouraud as fixshade::span::SpanShader>::fill_row"))
-        .and_then(|l| l.split_whitespace().next()?.parse::<u64>().ok())
-        .ok_or("no fill_row line in the M4 profile of S2")?;
-    let loop_px = fill_row as f64 / 76800.0;
-    let _ = writeln!(
-        md,
-        "Targets: the Gouraud span loop on the M4, `PairGouraud::fill_row` (the span loop with its \
-         entry and the lanes' re-anchoring every 64 pixels, callees none) in S2 (a full-screen \
-         Gouraud quad, no depth; all its pixels but those of the spans under 16 pixels at the ends \
-         of its diagonal): {fill_row} instructions / 76 800 \
-         pixels = **{loop_px:.2}** per pixel (target ≤ 6: {}); the whole S2 frame (the vertices, \
-         the rows' walk and each span's set-up, two spans a row, included) {:.2} per pixel. S1 on \
-         the M0+: **{}** instructions per frame (target ≤ 870 000: {}).\n",
-        if loop_px <= 6.0 { "met" } else { "not met" },
-        s2 as f64 / 76800.0,
-        s1m0,
-        if s1m0 <= 870_000 { "met" } else { "not met" }
-    );
     let _ = writeln!(
         js,
-        "  \"cpi_assumed\": {{\"cortex_m4\": {CPI_M4}, \"cortex_m0plus\": {CPI_M0}}},\n  \"s2_m4_instructions_per_pixel\": {:.3},\n  \"s2_m4_fill_row_instructions_per_pixel\": {loop_px:.3},\n  \"s1_m0plus_instructions\": {s1m0},",
-        s2 as f64 / 76800.0
+        "  \"cpi_assumed\": {{\"cortex_m4\": {CPI_M4}, \"cortex_m0plus\": {CPI_M0}}},"
     );
-
     if let Some(p) = peers_tsv {
         let tgx = peers(p)?;
         let _ = writeln!(
@@ -491,6 +466,13 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         section(&m0_size, ".bss"),
         m0_js.join(", ")
     );
+    let microbit_s1 = m0_lines
+        .iter()
+        .zip(&m0_counts)
+        .find(|(l, _)| l.get("frame").map(String::as_str) == Some("m0_s1_gouraud"))
+        .map(|(_, c)| *c)
+        .ok_or("microbit: no m0_s1_gouraud frame")?;
+    budgets::target_table(raw, &m4, &m0, microbit_s1, &mut md, &mut js)?;
     let _ = writeln!(
         md,
         "## Where the instructions go\n\n\
@@ -499,6 +481,12 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
          (`N × k`: k instructions that each ran N times; in S1, 1 225 is once a vertex, 2 208 \
          once a triangle, 594 once a triangle set up). Frame 0 is S1, frame 1 is S2.\n"
     );
+    fn s1(v: &[Frame]) -> Option<&Frame> {
+        v.iter().find(|f| f.name == "s1_gouraud")
+    }
+    if let (Some(a), Some(b)) = (s1(&m4), s1(&m0)) {
+        budgets::stage_table(raw, a, b, &mut md)?;
+    }
     for (t, core) in TARGETS {
         for n in 0..2 {
             if let Ok(p) = read(&raw.join(t).join(format!("profile_{n}.txt"))) {
