@@ -216,7 +216,7 @@ pub(super) fn target_table(
         }
     };
     let m = 1_000_000.0;
-    let rows: [(&str, Option<u64>, f64, Option<f64>, bool); 10] = [
+    let rows = [
         (
             "M4F S1",
             Some(find(m4, "s1_gouraud")?),
@@ -252,7 +252,7 @@ pub(super) fn target_table(
             Some(6.0 * m),
             false,
         ),
-        ("M0+ S4", Some(find(m0, "s4_phong")?), 25.0 * m, None, false),
+        Target("M0+ S4", Some(find(m0, "s4_phong")?), 25.0 * m, None, false),
         (
             "M4F S2",
             Some(find(m4, "s2_gouraud")?),
@@ -298,7 +298,7 @@ pub(super) fn target_table(
         }
     };
     let mut entries = Vec::new();
-    for (name, now, must, goal, bytes) in rows {
+    for Target(name, now, must, goal, bytes) in rows {
         let _ = writeln!(
             md,
             "| {name} | {} | ≤ {} | {} | {} |",
