@@ -8,8 +8,15 @@ use std::path::Path;
 
 use super::{read, Frame};
 
-/// The stages, in the order of the table: name, unit, budgets (M4F, M0+).
-const STAGES: [(&str, &str, Option<(u32, u32)>); 8] = [
+/// A stage's budget per unit: M4F, M0+.
+type Budget = Option<(u32, u32)>;
+
+/// A target: figure, this run's value, must, goal, in bytes (else
+/// instructions).
+struct Target(&'static str, Option<u64>, f64, Option<f64>, bool);
+
+/// The stages, in the order of the table: name, unit, budget.
+const STAGES: [(&str, &str, Budget); 8] = [
     (
         "vertex (transform, reciprocal, snap, flags)",
         "vertex",
