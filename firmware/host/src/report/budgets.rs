@@ -224,35 +224,35 @@ pub(super) fn target_table(
     };
     let m = 1_000_000.0;
     let rows = [
-        (
+        Target(
             "M4F S1",
             Some(find(m4, "s1_gouraud")?),
             1.2 * m,
             Some(0.8 * m),
             false,
         ),
-        (
+        Target(
             "M0+ S1",
             Some(find(m0, "s1_gouraud")?),
             2.0 * m,
             Some(1.3 * m),
             false,
         ),
-        (
+        Target(
             "M4F S3",
             Some(find(m4, "s3_gouraud")?),
             10.0 * m,
             Some(6.0 * m),
             false,
         ),
-        (
+        Target(
             "M0+ S3",
             Some(find(m0, "s3_gouraud")?),
             18.0 * m,
             None,
             false,
         ),
-        (
+        Target(
             "M4F S4 (Phong shading)",
             Some(find(m4, "s4_phong")?),
             12.0 * m,
@@ -260,28 +260,28 @@ pub(super) fn target_table(
             false,
         ),
         Target("M0+ S4", Some(find(m0, "s4_phong")?), 25.0 * m, None, false),
-        (
+        Target(
             "M4F S2",
             Some(find(m4, "s2_gouraud")?),
             0.55 * m,
             None,
             false,
         ),
-        (
+        Target(
             "16 KB Cortex-M0, S1 in 4-row bands",
             Some(microbit_s1),
             10.0 * m,
             Some(4.0 * m),
             false,
         ),
-        (
+        Target(
             ".text, S1's configuration, M0+ (runtime included)",
             config("s1")?,
             32.0 * 1024.0,
             Some(16.0 * 1024.0),
             true,
         ),
-        (
+        Target(
             ".text, ambient-only configuration, M0+",
             config("ambient")?,
             20.0 * 1024.0,
