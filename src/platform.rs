@@ -55,20 +55,24 @@ pub(crate) fn leading_zeros(x: u32) -> u32 {
     }
 }
 
-/// [`leading_zeros`] in halving steps.
+/// [`leading_zeros`] in three halving steps and a table of the top
+/// nibble's.
 #[inline(always)]
 fn leading_zeros_halving(x: u32) -> u32 {
+    /// Leading zeros of a nibble (`NIBBLE[0]` unused: the top nibble is
+    /// not 0 once the steps are done, `x` being non-zero).
+    const NIBBLE: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
     if x == 0 {
         return 32;
     }
     let (mut x, mut n) = (x, 0);
-    for k in [16, 8, 4, 2, 1] {
+    for k in [16, 8, 4] {
         if x >> (32 - k) == 0 {
             n += k;
             x <<= k;
         }
     }
-    n
+    n + NIBBLE[(x >> 28) as usize] as u32
 }
 
 /// The RGB565 pixel `(r >> 20) << 11 | (g >> 20) << 5 | (b >> 20)` of
