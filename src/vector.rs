@@ -27,6 +27,7 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
+use crate::platform;
 use crate::num::widening::{mul_i32, mul_i32_i16};
 use fixed::types::{I2F14, I8F24};
 
@@ -797,10 +798,30 @@ impl core::ops::Mul for Mat4 {
 /// assert_eq!(normal_matrix(&Mat4::scale(I8F24::ZERO)), None); // singular
 /// ```
 pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
-    // Cofactor matrix of the 3x3 part = det · inverse-transpose. Entries of
-    // m are < 2^31 raw; a 2x2 minor needs i128 to stay exact.
-    let a = |r: usize, c: usize| m.m[r][c] as i128;
-    let mut cof = [[0i128; 3]; 3];
+    // The 3 × 3 part brought to 19 bits: its largest magnitude into
+    // [2¹⁸, 2¹⁹) (the scale is free, see above; a right shift rounds each
+    // entry to within half a unit of 2⁻¹⁸ of the largest, below the
+    // output's 2⁻¹⁴). Then every cofactor (a 2 × 2 minor) is below 2³⁹
+    // and the determinant below 3·2⁵⁸: `i64` holds them exactly.
+    let max = (0..3)
+        .flat_map(|r| (0..3).map(move |c| m.m[r][c].unsigned_abs()))
+        .max()
+        .unwrap_or(0);
+    if max == 0 {
+        return None;
+    }
+    let top = 31 - platform::leading_zeros(max) as i32;
+    let a = |r: usize, c: usize| -> i64 {
+        let v = m.m[r][c] as i64;
+        if top > 18 {
+            let sh = top - 18;
+            (v + (1 << (sh - 1))) >> sh
+        } else {
+            v << (18 - top)
+        }
+    };
+    // Cofactor matrix of the 3 × 3 part = det · inverse-transpose.
+    let mut cof = [[0i64; 3]; 3];
     for (r, row) in cof.iter_mut().enumerate() {
         for (c, out) in row.iter_mut().enumerate() {
             let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
@@ -809,29 +830,20 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
         }
     }
     let det = a(0, 0) * cof[0][0] + a(0, 1) * cof[0][1] + a(0, 2) * cof[0][2];
-    if det == 0 {
-        return None;
-    }
     // Inverse-transpose = cof / det. Dividing by |det| would only scale; we
     // keep the sign of det (so a mirror flips normals) and scale the largest
     // entry to just below 2^14.
-    let sign: i128 = if det < 0 { -1 } else { 1 };
-    let max = cof
-        .iter()
-        .flatten()
-        .map(|v| v.unsigned_abs())
-        .max()
-        .unwrap_or(0);
-    if max == 0 {
+    let max = cof.iter().flatten().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    if det == 0 || max == 0 {
         return None;
     }
+    let sign = if det < 0 { -1 } else { 1 };
     let mut out = [[0i16; 3]; 3];
     for r in 0..3 {
         for c in 0..3 {
-            // (v << 14) / max with |v| <= max: result in [-2^14, 2^14].
-            let v = cof[r][c] * sign;
-            let q = (v * (1i128 << 14)) / max as i128;
-            out[r][c] = q as i16;
+            // (v·2^14) / max with |v| ≤ max < 2^39: the quotient in
+            // [−2^14, 2^14], the product below 2^53.
+            out[r][c] = (((cof[r][c] * sign) << 14) / max as i64) as i16;
         }
     }
     Some(out)
@@ -841,6 +853,44 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
 mod tests {
     use super::*;
     use crate::tests::xorshift;
+
+    /// The normal matrix is the f64 inverse transpose scaled to a largest
+    /// entry of 2¹⁴, within two units, for matrices of every scale that
+    /// are not near singular (the cofactors not far below the entries'
+    /// squares), and keeps the determinant's sign.
+    #[test]
+    fn normal_matrix_is_the_scaled_inverse_transpose() {
+        let mut next = xorshift(0x1234_5678_9abc_def1);
+        let mut checked = 0;
+        for _ in 0..20_000 {
+            let sh = (next() % 24) as u32;
+            let mut m = Mat4::IDENTITY;
+            for r in 0..3 {
+                for c in 0..3 {
+                    m.m[r][c] = (next() as i32) >> sh;
+                }
+            }
+            let a = |r: usize, c: usize| m.m[r][c] as f64;
+            let cof = |r: usize, c: usize| {
+                let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+                a(r1, c1) * a(r2, c2) - a(r1, c2) * a(r2, c1)
+            };
+            let det = (0..3).map(|c| a(0, c) * cof(0, c)).sum::<f64>();
+            let big = (0..9).map(|k| cof(k / 3, k % 3).abs()).fold(0.0, f64::max);
+            let entry = (0..9).map(|k| a(k / 3, k % 3).abs()).fold(0.0, f64::max);
+            if big < entry * entry / 64.0 || det.abs() < big * entry / 64.0 {
+                continue;
+            }
+            checked += 1;
+            let n = normal_matrix(&m).expect("not singular");
+            for k in 0..9 {
+                let want = cof(k / 3, k % 3) * det.signum() / big * 16384.0;
+                let got = n[k / 3][k % 3] as f64;
+                assert!((got - want).abs() <= 2.0, "{m:?}: entry {k} {got} against {want}");
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
 
     /// `transform_point`'s row by exact `i128` sums, and by the four terms
     /// summed saturating one by one (its earlier form).
