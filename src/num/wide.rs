@@ -4,7 +4,9 @@
 //! clipping planes' distances.
 
 /// A value `m·2^e` (`|m| < 2⁶²`): the per-draw composition of the vertex
-/// stage's rows, and the rare path's plane distances, in `i64` alone.
+/// stage's rows, and the rare path's plane distances, in `i64` alone. Its
+/// operations are out of line: none runs per vertex or per triangle on the
+/// lean path, and inlined they cost kilobytes of flash.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Wide {
     pub(crate) m: i64,
@@ -19,6 +21,7 @@ impl Wide {
     }
 
     /// The same value with `|m|` in `[2⁶⁰, 2⁶¹)` (a right shift floors).
+    #[inline(never)]
     pub(crate) fn norm(self) -> Wide {
         if self.m == 0 {
             return Wide::ZERO;
@@ -40,6 +43,7 @@ impl Wide {
     /// `self·b` for `|b| < 2³¹`, within 2⁻⁶⁰ of the product: from 31-bit
     /// halves of the mantissa (`|aₕ·b| < 2⁶⁰`, `0 ≤ aₗ·b < 2⁶²`), the high
     /// product moved up as far as it fits and the low one down to meet it.
+    #[inline(never)]
     pub(crate) fn mul(self, b: i64) -> Wide {
         debug_assert!(b.unsigned_abs() < 1 << 31);
         let a = self.norm();
@@ -52,6 +56,7 @@ impl Wide {
     /// `self·o`, from 31-bit halves of both mantissas (`aₕbₕ < 2⁶⁰`, the
     /// middle terms below 2⁶¹ each), the low × low product left out:
     /// within 2⁻⁵⁸ of the product.
+    #[inline(never)]
     pub(crate) fn times(self, o: Wide) -> Wide {
         let (a, b) = (self.norm(), o.norm());
         let (ah, al) = (a.m >> 31, a.m & ((1 << 31) - 1));
@@ -60,6 +65,7 @@ impl Wide {
         Wide::new(ah * bh + mid, a.e + b.e + 62)
     }
 
+    #[inline(never)]
     pub(crate) fn add(self, o: Wide) -> Wide {
         let (a, b) = (self.norm(), o.norm());
         if a.m == 0 {
@@ -90,6 +96,7 @@ impl Wide {
 
     /// The value in units of `2^e`, rounded half up (the caller picks `e`
     /// so that it fits).
+    #[inline(never)]
     pub(crate) fn at(self, e: i32) -> i64 {
         let s = self.e - e;
         if s >= 0 {
