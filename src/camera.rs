@@ -107,10 +107,10 @@ pub struct Camera {
 /// but the horizontal scale, which needs the viewport's aspect ratio.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Lens {
-    /// `cot(fovy / 2)` (perspective) or the view volume's height
-    /// (orthographic), `f64`: the horizontal scale is `k / aspect` or
-    /// `2 / (k · aspect)`.
-    k: f64,
+    /// `cot(fovy / 2)` (perspective) or 2 over the view volume's height
+    /// (orthographic), `Q.32` (below 2³⁹: the vertical scale is it, below
+    /// 2⁷): the horizontal scale is `kx / aspect`, in integers.
+    kx: u64,
     sy: i32,
     a: i32,
     b: i32,
@@ -149,7 +149,7 @@ impl Lens {
                 let half = fovy_deg as f64 * core::f64::consts::PI / 360.0;
                 let fl = cos_over_sin(half);
                 Lens {
-                    k: fl,
+                    kx: q32(fl),
                     sy: q24(fl),
                     a: q24((f + n) / (n - f)),
                     b: q24(2.0 * f * n / (n - f)),
@@ -159,7 +159,7 @@ impl Lens {
             Projection::Orthographic { height } => {
                 let h = height as f64;
                 Lens {
-                    k: h,
+                    kx: q32(2.0 / h),
                     sy: q24(2.0 / h),
                     a: q24(-2.0 / (f - n)),
                     b: q24(-(f + n) / (f - n)),
@@ -183,6 +183,11 @@ const fn q24(v: f64) -> i32 {
     let s = v * (1u64 << COORD_FRAC) as f64;
     let s = if s >= 0.0 { s + 0.5 } else { s - 0.5 };
     s as i32
+}
+
+/// `v ≥ 0` in `Q.32`, rounded half up, saturated to `u64` (NaN to 0).
+const fn q32(v: f64) -> u64 {
+    (v * (1u64 << 32) as f64 + 0.5) as u64
 }
 
 impl Camera {
@@ -346,18 +351,20 @@ impl Camera {
     /// assert_eq!(square.projection_for(1, 1000), Err(CameraError::BadProjection));
     /// ```
     pub fn projection_for(&self, width: u32, height: u32) -> Result<ProjectionCoeffs, CameraError> {
-        let aspect = width.max(1) as f64 / height.max(1) as f64;
+        // Both sides below 2²⁴ (their ratio kept to 2⁻²³), so that
+        // `kx·h` is below 2⁶³; no float at draw time.
+        let (mut w, mut h) = (width.max(1) as u64, height.max(1) as u64);
+        while w.max(h) >= 1 << 24 {
+            (w, h) = ((w >> 1).max(1), (h >> 1).max(1));
+        }
         let l = &self.lens;
-        let sx = if l.perspective {
-            q24(l.k / aspect)
-        } else {
-            q24(2.0 / (l.k * aspect))
-        };
-        if sx.unsigned_abs() > COEFF_LIMIT {
+        // kx·h/w from Q.32 to Q.24, rounded half up.
+        let sx = (l.kx * h + (w << 7)) / (w << 8);
+        if sx > COEFF_LIMIT as u64 {
             return Err(CameraError::BadProjection);
         }
         Ok(ProjectionCoeffs {
-            sx,
+            sx: sx as i32,
             sy: l.sy,
             tx: 0,
             ty: 0,
