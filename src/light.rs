@@ -369,6 +369,10 @@ impl Falloff for Attenuation {
 /// assert_eq!(full, [u32::MAX; 3]); // saturating
 /// ```
 pub trait PreparedLights: Clone + core::fmt::Debug {
+    /// No light at all (`()`, or sets of `()`): the colour is `E + A·Ka`
+    /// everywhere, so nothing of a surface (its normal, its position) is
+    /// made for it.
+    const EMPTY: bool = false;
     /// Adds this light's (or these lights') contribution at `ctx` to `acc`
     /// (`Q.16` per channel, saturating).
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]);
@@ -1231,6 +1235,7 @@ impl LightSet for () {
 }
 
 impl PreparedLights for () {
+    const EMPTY: bool = true;
     #[inline(always)]
     fn shade<S: Specular>(&self, _: &Surface, _: &mut [u32; 3]) {}
 }
@@ -1244,6 +1249,7 @@ macro_rules! tuple_sets {
             }
         }
         impl<$($t: PreparedLights),+> PreparedLights for ($($t,)+) {
+            const EMPTY: bool = $($t::EMPTY)&&+;
             #[inline]
             fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
                 $(self.$i.shade::<S>(ctx, acc);)+
@@ -1271,6 +1277,7 @@ impl<L: LightSet, const N: usize> LightSet for [L; N] {
 }
 
 impl<P: PreparedLights, const N: usize> PreparedLights for [P; N] {
+    const EMPTY: bool = P::EMPTY || N == 0;
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         for l in self {

@@ -31,7 +31,7 @@
 use crate::camera::ProjectionCoeffs;
 use crate::color::Shade;
 use crate::illumination::{Lighting, Viewer};
-use crate::light::LightSet;
+use crate::light::{LightSet, PreparedLights};
 use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::normalize::normalize;
@@ -592,7 +592,12 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
             lighting,
             mesh,
             modelview: folded,
-            normal_m: normal_matrix(modelview).unwrap_or([[0; 3]; 3]),
+            // Made only where a light reads normals.
+            normal_m: if <L::Prepared as PreparedLights>::EMPTY {
+                [[0; 3]; 3]
+            } else {
+                normal_matrix(modelview).unwrap_or([[0; 3]; 3])
+            },
             rows: Rows::new(&folded, p, w, h),
         }
     }
@@ -630,6 +635,10 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
     /// each row's sum of 16 × 16-bit products is at most `3·2²⁹ < 2³¹`.
     #[inline]
     pub(crate) fn eye_normal(&self, i: usize) -> Unit3 {
+        if <L::Prepared as PreparedLights>::EMPTY {
+            // No light reads it (and the matrix was not made).
+            return Unit3::ZERO;
+        }
         let Some(n) = self.mesh.normals.and_then(|ns| ns.get(i)) else {
             return Unit3::ZERO;
         };
