@@ -55,7 +55,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
         let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
         let (lo, hi) = ((lo(0), lo(1)), (hi(0), hi(1)));
-        if !self.meets(lo, hi) {
+        let Some((cols, rows)) = self.meets(lo, hi) else {
+            return Ok(());
+        };
+        // A box of at most 2 × 2 pixel centres: the samples tested one by
+        // one, and a triangle that covers none of them (most of a fine
+        // mesh's far from the centre of the view) is neither lit nor set up.
+        if cols.1 - cols.0 <= 1 && rows.1 - rows.0 <= 1 && covers_none(&p, area, cols, rows) {
             return Ok(());
         }
         if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(c, area) {
@@ -64,16 +70,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         self.whole::<M, O, D>(c, &p, area, out, depth, stats)
     }
 
-    /// Whether the box `lo ..= hi` of the window positions holds a pixel
-    /// centre of the pixels drawn: the cheap test that spares off-screen
-    /// and tiny triangles their lighting and set-up. Sample `16x + 8` lies
-    /// in `[min, max]` for `x ∈ [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
+    /// The columns and rows of the pixel centres of the pixels drawn that
+    /// the box `lo ..= hi` of the window positions holds, if any: the
+    /// cheap test that spares off-screen and tiny triangles their lighting
+    /// and set-up. Sample `16x + 8` lies in `[min, max]` for `x ∈
+    /// [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
     #[inline(always)]
-    fn meets(&self, lo: (i32, i32), hi: (i32, i32)) -> bool {
+    fn meets(&self, lo: (i32, i32), hi: (i32, i32)) -> Option<((i32, i32), (i32, i32))> {
         let r = &self.rect;
         let (x0, x1) = (((lo.0 + 7) >> 4).max(r.c0), ((hi.0 - 8) >> 4).min(r.c1));
         let (y0, y1) = (((lo.1 + 7) >> 4).max(r.r0), ((hi.1 - 8) >> 4).min(r.r1));
-        x0 <= x1 && y0 <= y1
+        (x0 <= x1 && y0 <= y1).then_some(((x0, x1), (y0, y1)))
     }
 
     /// Whether the unsnapped triangle faces otherwise than its snapped
@@ -89,6 +96,39 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let fine = (f1[0] - f0[0]) * (f2[1] - f0[1]) - (f2[0] - f0[0]) * (f1[1] - f0[1]);
         fine == 0 || (fine < 0) != (a < 0)
     }
+}
+
+/// Whether the triangle of window positions `p` (doubled area `area`, not
+/// 0) covers none of the samples of columns `cols` and rows `rows`, by
+/// SPEC.md 5's rule as the walk applies it (`src/walk.rs`): a sample is
+/// covered where every edge function of the positively oriented triangle
+/// is positive, or zero on a top or left edge. Positions within the guard
+/// band and samples within the target: differences below 2¹⁵, each edge
+/// function below 2³¹.
+#[inline(always)]
+pub(crate) fn covers_none(p: &[[i32; 3]; 3], area: i32, cols: (i32, i32), rows: (i32, i32)) -> bool {
+    let (a, mut b, mut c) = ((p[0][0], p[0][1]), (p[1][0], p[1][1]), (p[2][0], p[2][1]));
+    if area < 0 {
+        core::mem::swap(&mut b, &mut c);
+    }
+    let edge = |p: (i32, i32), q: (i32, i32)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        (p, dx, dy, dy < 0 || (dy == 0 && dx > 0))
+    };
+    let edges = [edge(b, c), edge(c, a), edge(a, b)];
+    for r in rows.0..=rows.1 {
+        for col in cols.0..=cols.1 {
+            let s = (16 * col + 8, 16 * r + 8);
+            let inside = edges.iter().all(|&(p, dx, dy, top_left)| {
+                let f = dx * (s.1 - p.1) - dy * (s.0 - p.0);
+                f > 0 || (f == 0 && top_left)
+            });
+            if inside {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// Whether snapping may have given a triangle of window positions whose

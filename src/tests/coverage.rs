@@ -9,6 +9,7 @@
 use core::mem::MaybeUninit;
 
 use crate::setup::{area, set_up, Rect, Triangle, Vtx, ATTR};
+use crate::triangle::covers_none;
 use crate::vertex::GUARD;
 use proptest::prelude::*;
 
@@ -136,6 +137,30 @@ proptest! {
         h in 1i64..3,
     ) {
         whole_and_band(d.map(|(x, y)| (o.0 + x, o.1 + y)), y0, h)?;
+    }
+
+    /// The small-box test (`src/triangle.rs`) rejects a triangle whose box
+    /// holds at most 2 × 2 samples exactly when the oracle covers none of
+    /// them: ties on edges and horizontal edges included.
+    #[test]
+    fn small_boxes_cover_none_as_the_oracle_says(
+        o in (0i64..20 * 16, 0i64..20 * 16),
+        d in [(0i64..40, 0i64..40), (0i64..40, 0i64..40), (0i64..40, 0i64..40)],
+        snap in any::<bool>(),
+    ) {
+        // On a coarse grid half the time: samples on edges.
+        let v = d.map(|(x, y)| if snap { (o.0 + x / 8 * 8, o.1 + y / 8 * 8) } else { (o.0 + x, o.1 + y) });
+        let p = v.map(|(x, y)| [x as i32, y as i32, 0]);
+        let a = edge(v[0], v[1], v[2]) as i32;
+        let lo = |k: usize| (0..3).map(|j| p[j][k]).min().unwrap_or(0);
+        let hi = |k: usize| (0..3).map(|j| p[j][k]).max().unwrap_or(0);
+        let (cols, rows) = (((lo(0) + 7) >> 4, (hi(0) - 8) >> 4), ((lo(1) + 7) >> 4, (hi(1) - 8) >> 4));
+        // (Boxes that hold no sample or more than 2 × 2 are not this test's.)
+        if a == 0 || cols.0 > cols.1 || rows.0 > rows.1 || cols.1 - cols.0 > 1 || rows.1 - rows.0 > 1 {
+            return Ok(());
+        }
+        let none = oracle(v, 24, (0, 23)).is_empty();
+        prop_assert_eq!(covers_none(&p, a, cols, rows), none);
     }
 
     /// At the limits — vertices anywhere in the guard band, attributes to
