@@ -61,7 +61,7 @@ use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::options::{check_bounds, DrawStats, RenderError, ShadingKind, ShadingMode};
 use crate::render::Prepared;
-use crate::shade::{Corners, Frame};
+use crate::shade::Frame;
 use crate::span::Memory;
 use crate::vertex::CachedVertex;
 pub use crate::vertex::{Cached, Recomputed, VertexMode};
@@ -499,10 +499,5 @@ where
             return Ok(());
         }
     }
-    let mut c = Corners {
-        cache,
-        slot,
-        vertex,
-    };
-    f.triangle::<M, _, D>(&mut c, out, depth, stats)
+    f.triangle::<M, _, D>(cache, slot, vertex, out, depth, stats)
 }

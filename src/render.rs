@@ -42,7 +42,7 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::Mesh;
 use crate::options::check_bounds;
-use crate::shade::{rect_of, Corners, Frame};
+use crate::shade::{rect_of, Frame};
 use crate::span::{Memory, Out, TargetSink};
 use crate::vector::Mat4;
 use crate::vertex::{Stage, VertexMode};
@@ -205,20 +205,10 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         for tri in mesh.indices {
             let idx = tri.map(|i| i as usize);
             if X::CACHED {
-                let mut c = Corners {
-                    cache: &mut *cache,
-                    slot: idx,
-                    vertex: idx,
-                };
-                frame.triangle::<M, O, D>(&mut c, out, depth, &mut stats)
+                frame.triangle::<M, O, D>(cache, idx, idx, out, depth, &mut stats)
             } else {
                 let mut three = idx.map(|i| frame.stage.project(i));
-                let mut c = Corners {
-                    cache: &mut three,
-                    slot: [0, 1, 2],
-                    vertex: idx,
-                };
-                frame.triangle::<M, O, D>(&mut c, out, depth, &mut stats)
+                frame.triangle::<M, O, D>(&mut three, [0, 1, 2], idx, out, depth, &mut stats)
             }
             .map_err(RenderError::Target)?;
         }

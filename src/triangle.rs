@@ -24,26 +24,31 @@ use crate::light::LightSet;
 use crate::material::Specular;
 use crate::options::{DrawStats, ShadingMode};
 use crate::shade::{Corners, Frame};
+use crate::vertex::CachedVertex;
 use crate::span::Out;
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Culls, lights and draws one triangle.
+    /// Culls, lights and draws one triangle: mesh vertices `vertex`,
+    /// projected into `cache[slot]`. (The corners are gathered only for a
+    /// triangle that passes the cheap tests: built for every triangle,
+    /// they were stored to the stack for every triangle.)
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn triangle<M: ShadingMode, O: Out, D: DepthTest>(
         &self,
-        c: &mut Corners,
+        cache: &mut [CachedVertex],
+        slot: [usize; 3],
+        vertex: [usize; 3],
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), O::Error> {
-        let (Some(v0), Some(v1), Some(v2)) = (
-            c.cache.get(c.slot[0]),
-            c.cache.get(c.slot[1]),
-            c.cache.get(c.slot[2]),
-        ) else {
+        let (Some(v0), Some(v1), Some(v2)) = (cache.get(slot[0]), cache.get(slot[1]), cache.get(slot[2]))
+        else {
             return Ok(());
         };
         if v0.rare_bits() | v1.rare_bits() | v2.rare_bits() != 0 {
+            let c = &mut Corners { cache, slot, vertex };
             return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
         }
         let p = [v0.position(), v1.position(), v2.position()];
@@ -64,6 +69,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if cols.1 - cols.0 <= 1 && rows.1 - rows.0 <= 1 && covers_none(&p, area, cols, rows) {
             return Ok(());
         }
+        let c = &mut Corners { cache, slot, vertex };
         if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(c, area) {
             return Ok(());
         }
