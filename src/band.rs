@@ -305,6 +305,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             frame.stage.project_all(cache);
         }
         let runs = Runs::new(mesh.indices.len());
+        let mut memo = Memo::new();
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
         // Bit j: triangle j of the run may draw (j ≥ 32: always visited).
         let mut visible = [0u32; CHUNKS];
@@ -313,7 +314,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             let v = if X::CACHED {
                 idx.map(|i| cache.get(i).copied().unwrap_or_default())
             } else {
-                idx.map(|i| frame.stage.project(i))
+                memo.corners(&frame, idx)
             };
             if let Some((lo, hi)) = visible_rows(&frame, v, cull) {
                 let (r, j) = (t / runs.per, t % runs.per);
@@ -332,7 +333,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             bounds: &bounds,
             visible: &visible,
         };
-        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, bands, depth, &mut stats)?;
+        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, &mut memo, bands, depth, &mut stats)?;
         Ok(stats)
     }
 }
@@ -357,6 +358,7 @@ impl Job<'_, '_> {
         &self,
         frame: &mut Frame<'_, '_, S, V, L>,
         cache: &mut [CachedVertex],
+        memo: &mut Memo,
         bands: &mut Bands<T>,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -427,8 +429,8 @@ impl Job<'_, '_> {
                             frame, cache, idx, idx, &mut out, depth, stats,
                         )
                     } else {
-                        let mut three = idx.map(|i| frame.stage.project(i));
-                        band_triangle::<M, _, _, _, _>(
+                        let mut three = memo.corners(frame, idx);
+                        let res = band_triangle::<M, _, _, _, _>(
                             frame,
                             &mut three,
                             [0, 1, 2],
@@ -436,7 +438,9 @@ impl Job<'_, '_> {
                             &mut out,
                             depth,
                             stats,
-                        )
+                        );
+                        memo.keep(idx, &three);
+                        res
                     };
                     let Ok(()) = res;
                 }
@@ -468,6 +472,59 @@ impl Runs {
     fn new(triangles: usize) -> Runs {
         Runs {
             per: triangles.div_ceil(CHUNKS).max(1),
+        }
+    }
+}
+
+/// Entries of [`Memo`]: 64 vertices, 1 280 bytes of stack.
+const MEMO: usize = 64;
+
+/// The recently projected (and lit) vertices of a draw without a vertex
+/// store ([`Recomputed`]): a small direct-mapped table by mesh index, on
+/// the stack. Consecutive triangles share most of their vertices, and a
+/// band revisits its runs' triangles, so most corners are found here
+/// instead of being projected (and lit) again. An entry holds what
+/// [`Stage::project`](crate::vertex::Stage::project) gives and what
+/// lighting adds to it, so the pixels are those of projecting each time.
+struct Memo {
+    tag: [u32; MEMO],
+    v: [CachedVertex; MEMO],
+}
+
+impl Memo {
+    fn new() -> Memo {
+        Memo {
+            tag: [u32::MAX; MEMO],
+            v: [CachedVertex::new(); MEMO],
+        }
+    }
+
+    /// The corners of triangle `idx`: from the table, or projected into it.
+    #[inline(always)]
+    fn corners<S: Specular, V: Viewer, L: LightSet>(
+        &mut self,
+        f: &Frame<'_, '_, S, V, L>,
+        idx: [usize; 3],
+    ) -> [CachedVertex; 3] {
+        idx.map(|i| {
+            let k = i % MEMO;
+            if self.tag[k] != i as u32 {
+                self.tag[k] = i as u32;
+                self.v[k] = f.stage.project(i);
+            }
+            self.v[k]
+        })
+    }
+
+    /// Keeps what drawing triangle `idx` added to its corners `three`
+    /// (their lit colours).
+    #[inline(always)]
+    fn keep(&mut self, idx: [usize; 3], three: &[CachedVertex; 3]) {
+        for (i, v) in idx.iter().zip(three) {
+            let k = i % MEMO;
+            if self.tag[k] == *i as u32 {
+                self.v[k] = *v;
+            }
         }
     }
 }
