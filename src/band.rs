@@ -25,8 +25,11 @@
 //!   into a caller-provided [`CachedVertex`] per mesh vertex (16 bytes: window
 //!   position, depth, colour, flags; the whole frame's store), and lit once,
 //!   when a visible triangle first needs them.
-//! - [`Recomputed`]: no per-vertex storage; each triangle's vertices are
-//!   transformed, projected and lit again for every band it is drawn in.
+//! - [`Recomputed`]: no per-vertex storage; a vertex is transformed,
+//!   projected and lit again whenever it is not among the last ones kept
+//!   in a small table on the stack (64 entries by mesh index, direct
+//!   mapped: consecutive triangles share most of their vertices, and a
+//!   band revisits its runs' triangles).
 //!
 //! # Finding a band's triangles
 //! A frame's triangles are split into [`CHUNKS`] runs of consecutive
@@ -44,7 +47,8 @@
 //! The caller provides the colour band (`W × h` `u16`), the depth band
 //! (`W × h` `u16`, if the scene has a depth test) and, in cached mode, one
 //! [`CachedVertex`] per mesh vertex. A draw call keeps the run table
-//! ([`CHUNKS`] × 12 bytes) and a triangle's set-up on the stack; a
+//! ([`CHUNKS`] × 12 bytes), in recomputed mode the table of recent
+//! vertices (1 280 bytes), and a triangle's set-up on the stack; a
 //! triangle that spans several bands is set up again in each (the 32-bit
 //! set-up is exact row by row, so the pixels are the whole frame's).
 
