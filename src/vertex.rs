@@ -531,8 +531,8 @@ impl VertexMode for Cached<'_> {
 }
 
 /// No per-vertex storage: each triangle's vertices are transformed,
-/// projected and lit again for each triangle (and in every band) that
-/// draws them.
+/// projected and lit again for each triangle that draws them (a draw into
+/// bands keeps the last 64 in a table on the stack, `src/band.rs`).
 ///
 /// ```
 /// use fixshade::band::{Recomputed, VertexMode};
