@@ -16,7 +16,7 @@
 //! # Per vertex
 //! Where the rows allow it ([`Rows::fast`]: `X` and `Y` at `W`'s exponent
 //! plus 16, `Z` at plus 25), a vertex takes `⌊V/2¹⁴⌋` of each row in
-//! 32-bit pieces, one reciprocal of its `W` ([`recip63`]) and three
+//! 32-bit pieces, one reciprocal of its `W` ([`recip_fast`]) and three
 //! products: the snapped position `round(x₁₄·2¹⁶/w₁₄)` exactly (a
 //! quotient the reciprocal leaves within a 2⁻¹⁶ of a rounding's half is
 //! divided exactly), and the depth attribute. A draw whose mesh box lies

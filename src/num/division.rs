@@ -1,9 +1,13 @@
 //! Exact integer division, cheap on every core.
 //!
-//! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the edge walk).
-//! - [`recip63`]: `⌊2⁶³ / d⌋` for a normalised 32-bit `d` without a 64-bit
-//!   division, the mantissa of a reciprocal (a triangle's area, a vertex's
-//!   `w`).
+//! - [`floor_div`]: `⌊a / b⌋` in `i32` or `i64` (the rare path, exact
+//!   fallbacks).
+//! - [`recip_fast`]: `2⁶³ / d` within a relative 2⁻²⁷ for a normalised
+//!   32-bit `d`, without a division: the one reciprocal of a vertex's `w`
+//!   and of a triangle's area.
+//! - [`Divisor`]: several exact floors by one 32-bit divisor (an edge's
+//!   quotients): the hardware division where the core has one, else the
+//!   reciprocal corrected by the remainders.
 //!
 //! A 64-bit division is one instruction on a 64-bit core and a library call
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
