@@ -42,15 +42,19 @@
 //! | --- | --- |
 //! | mesh in flash: `i16` positions in a box, packed normals, `u16` indices | [`mesh`] |
 //! | camera, projection | [`camera`] |
-//! | per vertex: model-view, projection, window position; lighting | `vertex`, [`illumination`], [`light`], [`material`], `specular_table`, `normalize` |
-//! | per triangle: culling, near clipping, facing | [`render`] |
+//! | per draw: model-view, projection, window mapping and the mesh's box folded into four rows | `vertex` |
+//! | per vertex: window position, depth; lighting | `vertex`, [`illumination`], [`light`], [`material`], `specular_table`, `normalize` |
+//! | per triangle: culling, cheap rejections, facing | `triangle` |
+//! | the rare path: near and guard-band clipping, big targets | `clip` |
+//! | the shading mode's attributes at the corners | `shade` |
 //! | set-up: edges and attribute planes | `setup` |
-//! | coverage: the watertight edge functions | `rasterizer` |
+//! | coverage: the exact edge walk, rows in chunks | `walk` |
 //! | spans: depth test, shading, RGB565 | `span`, [`depth`], [`color`] |
-//! | output: a `DrawTarget`, a framebuffer, bands | [`renderer`], [`framebuffer`], [`band`] |
+//! | output: a `DrawTarget`, a framebuffer, bands | [`render`], [`framebuffer`], [`band`] |
 //!
 //! Numbers are fixed-point throughout ([`num`], [`vector`]); each format's
-//! range and overflow proof is stated where it is defined. The conventions
+//! range and overflow proof is stated where it is defined. What differs by
+//! target (`cfg`s, assembly) is in one module, `platform`. The conventions
 //! (coordinate systems, the illumination equation, rounding) are the
 //! project's SPEC.md, shipped in the package's `docs/`.
 //!

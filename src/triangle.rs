@@ -24,8 +24,8 @@ use crate::light::LightSet;
 use crate::material::Specular;
 use crate::options::{DrawStats, ShadingMode};
 use crate::shade::{Corners, Frame};
-use crate::vertex::CachedVertex;
 use crate::span::Out;
+use crate::vertex::CachedVertex;
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Culls, lights and draws one triangle: mesh vertices `vertex`,
@@ -43,12 +43,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), O::Error> {
-        let (Some(v0), Some(v1), Some(v2)) = (cache.get(slot[0]), cache.get(slot[1]), cache.get(slot[2]))
+        let (Some(v0), Some(v1), Some(v2)) =
+            (cache.get(slot[0]), cache.get(slot[1]), cache.get(slot[2]))
         else {
             return Ok(());
         };
         if v0.rare_bits() | v1.rare_bits() | v2.rare_bits() != 0 {
-            let c = &mut Corners { cache, slot, vertex };
+            let c = &mut Corners {
+                cache,
+                slot,
+                vertex,
+            };
             return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
         }
         let p = [v0.position(), v1.position(), v2.position()];
@@ -69,7 +74,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if cols.1 - cols.0 <= 1 && rows.1 - rows.0 <= 1 && covers_none(&p, area, cols, rows) {
             return Ok(());
         }
-        let c = &mut Corners { cache, slot, vertex };
+        let c = &mut Corners {
+            cache,
+            slot,
+            vertex,
+        };
         if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(c, area) {
             return Ok(());
         }
@@ -112,7 +121,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 /// band and samples within the target: differences below 2¹⁵, each edge
 /// function below 2³¹.
 #[inline(always)]
-pub(crate) fn covers_none(p: &[[i32; 3]; 3], area: i32, cols: (i32, i32), rows: (i32, i32)) -> bool {
+pub(crate) fn covers_none(
+    p: &[[i32; 3]; 3],
+    area: i32,
+    cols: (i32, i32),
+    rows: (i32, i32),
+) -> bool {
     let (a, mut b, mut c) = ((p[0][0], p[0][1]), (p[1][0], p[1][1]), (p[2][0], p[2][1]));
     if area < 0 {
         core::mem::swap(&mut b, &mut c);

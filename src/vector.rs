@@ -27,8 +27,8 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
-use crate::platform;
 use crate::num::widening::{mul_i32, mul_i32_i16};
+use crate::platform;
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
@@ -833,7 +833,12 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     // Inverse-transpose = cof / det. Dividing by |det| would only scale; we
     // keep the sign of det (so a mirror flips normals) and scale the largest
     // entry to just below 2^14.
-    let max = cof.iter().flatten().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    let max = cof
+        .iter()
+        .flatten()
+        .map(|v| v.unsigned_abs())
+        .max()
+        .unwrap_or(0);
     if det == 0 || max == 0 {
         return None;
     }
@@ -886,7 +891,10 @@ mod tests {
             for k in 0..9 {
                 let want = cof(k / 3, k % 3) * det.signum() / big * 16384.0;
                 let got = n[k / 3][k % 3] as f64;
-                assert!((got - want).abs() <= 2.0, "{m:?}: entry {k} {got} against {want}");
+                assert!(
+                    (got - want).abs() <= 2.0,
+                    "{m:?}: entry {k} {got} against {want}"
+                );
             }
         }
         assert!(checked > 10_000, "{checked}");

@@ -36,7 +36,7 @@ use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::normalize::normalize;
 use crate::num::division::{floor_div, recip_fast};
-use crate::num::widening::{mul_i32_i16, mul_i32_u32};
+use crate::num::widening::{mul_i32_i16, mul_i32_u32, mul_i32_u32_shr31};
 use crate::num::Wide;
 use crate::options::DrawStats;
 use crate::platform;
@@ -267,29 +267,31 @@ impl Rows {
     /// [2³¹, 2³²)`.
     ///
     /// With `|x₁₄| < w₁₄/4` (the guard band), `xs = x₁₄·2ⁿ` is below 2³⁰
-    /// and `p = xs·r` is `2⁴⁷` times the quotient `Q` within a relative
-    /// `2⁻²⁷`: `|Q| < 2¹⁴`, so within `2⁻¹³` of it, and within `|Q|·2⁻¹¹`
+    /// and `p = ⌊xs·r/2³¹⌋` is `2¹⁶` times the quotient `Q` within a
+    /// relative `2⁻²⁷` ([`mul_i32_u32_shr31`]: only the product's high part
+    /// is made): `|Q| < 2¹⁴`, so within `2⁻¹³` of it, and within `|Q|·2⁻¹¹`
     /// units of 2⁻¹⁶ ([`near_half`]). Where the estimate's fraction lies
     /// that close to a half, the rounding is taken from the exact division.
     /// For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹` (`n ≥ 1` as
-    /// `w₁₄ < 2³¹`); it is not snapped, and its rounding is the
-    /// estimate's.
+    /// `w₁₄ < 2³¹`), `⌊zs·r/2³¹⌋` below 2³¹ (`w₁₄ ≥ 2²²`); it is not
+    /// snapped, and its rounding is the estimate's.
     #[inline(always)]
     fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
         let [x14, y14, z14, w14] = self.fourteen(q);
         let n = platform::leading_zeros(w14 as u32);
         let d = (w14 as u32) << n;
         let r = recip_fast(d);
+        // `⌊p/2³¹⌋` of each product `p` is all that is read of it.
         let snap = |v: i32| {
-            let p = mul_i32_u32(v << n, r);
-            let q = ((p + (1 << 46)) >> 47) as i32;
+            let p = mul_i32_u32_shr31(v << n, r);
+            let q = (p + (1 << 15)) >> 16;
             if near_half(p, q) {
                 return exact_round(v, w14);
             }
             q
         };
-        let zp = mul_i32_u32(z14 << (n - 1), r);
-        [snap(x14), snap(y14), ((zp + (1 << 36)) >> 37) as i32]
+        let zp = mul_i32_u32_shr31(z14 << (n - 1), r);
+        [snap(x14), snap(y14), (zp + (1 << 5)) >> 6]
     }
 
     /// The unsnapped window position of fast-row position `q` in units of
@@ -327,13 +329,13 @@ impl Rows {
     }
 }
 
-/// Whether the estimate `p = Q·2⁴⁷` (rounded to `q`) may lie on the other
-/// side of a rounding's half than `Q`: its 16 bits below the unit within
-/// `|q|/2¹¹ + 3` of `2¹⁵` (the estimate's error, `|Q|·2⁻¹¹` units, and one
-/// for the truncation).
+/// Whether the estimate `p = Q·2¹⁶` (its floor, rounded to `q`) may lie on
+/// the other side of a rounding's half than `Q`: its 16 bits below the
+/// unit within `|q|/2¹¹ + 3` of `2¹⁵` (the estimate's error, `|Q|·2⁻¹¹`
+/// units, and one for the truncation).
 #[inline(always)]
-fn near_half(p: i64, q: i32) -> bool {
-    let f = ((p >> 31) as u32 & 0xFFFF) as i32 - 0x8000;
+fn near_half(p: i32, q: i32) -> bool {
+    let f = (p & 0xFFFF) - 0x8000;
     f.unsigned_abs() <= (q.unsigned_abs() >> 11) + 3
 }
 

@@ -45,6 +45,40 @@ pub(crate) fn mul_i32_u32(a: i32, b: u32) -> i64 {
     }
 }
 
+/// `⌊a·b / 2³¹⌋`, exactly, for `a > i32::MIN` and a result that fits
+/// `i32` (a quotient estimate's high part: the window position, the
+/// depth).
+#[inline(always)]
+pub(crate) fn mul_i32_u32_shr31(a: i32, b: u32) -> i32 {
+    if platform::SOFT_MUL64 {
+        mul_i32_u32_shr31_limbs(a, b)
+    } else {
+        ((a as i64 * b as i64) >> 31) as i32
+    }
+}
+
+/// [`mul_i32_u32_shr31`] from four 16 × 16-bit products: with `a = aₕ·2¹⁶
+/// + aₗ` (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`), `b` likewise (unsigned), `x₁ =
+/// aₕbₗ` (`|x₁| < 2³¹`), `x₂ = aₗbₕ` and `x₃ = aₗbₗ` (below 2³², split in
+/// halves), `a·b = (aₕbₕ + x₂ₕ)·2³² + (x₁ + x₂ₗ + x₃ₕ)·2¹⁶ + x₃ₗ`; the
+/// last term, below 2¹⁶, cannot change the floor by 2³¹ of a multiple of
+/// 2¹⁶, so `⌊a·b/2³¹⌋ = 2(aₕbₕ + x₂ₕ) + ⌊(x₁ + x₂ₗ + x₃ₕ)/2¹⁵⌋`, the last
+/// floor taken as `⌊x₁/2¹⁵⌋ + ⌊(x₁ mod 2¹⁵ + x₂ₗ + x₃ₕ)/2¹⁵⌋` (no sum
+/// past 2¹⁸), the terms summed modulo 2³².
+#[inline(always)]
+pub(crate) fn mul_i32_u32_shr31_limbs(a: i32, b: u32) -> i32 {
+    let (ah, al) = (a >> 16, (a & 0xFFFF) as u32);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let x1 = ah * bl as i32;
+    let (x2, x3) = (al * bh, al * bl);
+    let low = (x1 & 0x7FFF) as u32 + (x2 & 0xFFFF) + (x3 >> 16);
+    // Modulo 2³²: the terms may pass i32's ends, the sum does not.
+    let hi = (ah * bh as i32).wrapping_add((x2 >> 16) as i32);
+    hi.wrapping_mul(2)
+        .wrapping_add(x1 >> 15)
+        .wrapping_add((low >> 15) as i32)
+}
+
 /// [`mul_i32_u32`] from 16-bit halves.
 #[inline(always)]
 pub(crate) fn mul_i32_u32_limbs(a: i32, b: u32) -> i64 {
@@ -120,7 +154,10 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs, mul_u32_limbs};
+    use super::{
+        mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs, mul_i32_u32_shr31_limbs,
+        mul_u32_limbs,
+    };
     use crate::tests::xorshift;
 
     /// Edge operands and xorshift ones of every magnitude.
@@ -172,6 +209,13 @@ mod tests {
                     mul_i32_u32_limbs(a32, b as u32),
                     a32 as i64 * (b as u32) as i64
                 );
+                // Within its domain: a > i32::MIN, the quotient within i32.
+                for a in [a32.max(-i32::MAX), a32 >> 1, a32 >> 2] {
+                    let p = (a as i64 * (b as u32) as i64) >> 31;
+                    if i32::try_from(p).is_ok() {
+                        assert_eq!(mul_i32_u32_shr31_limbs(a, b as u32) as i64, p, "{a} {b}");
+                    }
+                }
             }
         }
     }
