@@ -48,9 +48,9 @@
 //! | the rare path: near and guard-band clipping, big targets | `clip` |
 //! | the shading mode's attributes at the corners | `shade` |
 //! | set-up: edges and attribute planes | `setup` |
-//! | coverage: the exact edge walk, rows in chunks | `walk` |
+//! | coverage: the exact edge walk, rows in tables of up to 32 | `walk` |
 //! | spans: depth test, shading, RGB565 | `span`, [`depth`], [`color`] |
-//! | output: a `DrawTarget`, a framebuffer, bands | [`render`], [`framebuffer`], [`band`] |
+//! | output: a `DrawTarget`, a framebuffer, bands | [`renderer`], [`render`], [`framebuffer`], [`band`] |
 //!
 //! Numbers are fixed-point throughout ([`num`], [`vector`]); each format's
 //! range and overflow proof is stated where it is defined. What differs by
