@@ -106,11 +106,12 @@ pub(crate) fn set_up<'s, const N: usize>(
     if r_top > r_last {
         return None;
     }
-    // The planes into the slot as soon as they are made: they hold no
-    // register while the edges are made.
+    // The planes into the slot as soon as they are made, attribute by
+    // attribute: they hold no register while the rest is made.
     let out = slot.as_mut_ptr();
-    // SAFETY: `out` points to the slot, valid for writes.
-    unsafe { core::ptr::addr_of_mut!((*out).planes).write(planes(v, area, r_top)) };
+    // SAFETY: `out` points to the slot, valid for writes; `planes` writes
+    // every entry of the planes.
+    unsafe { planes(v, area, r_top, core::ptr::addr_of_mut!((*out).planes)) };
     // Which side the long edge t → b bounds: the middle vertex's side of it.
     let cross = (b.x - t.x) * (m.y - t.y) - (b.y - t.y) * (m.x - t.x);
     // The edges at the first row: the long one, and the short one that
@@ -152,29 +153,53 @@ pub(crate) fn set_up<'s, const N: usize>(
 }
 
 /// The planes of triangle `v` (doubled area `area`, not 0), anchored at
-/// column 0 of row `r_top`: each attribute's value at the centre of the
-/// pixel holding vertex 0 (`(c₀, r₀)`), from vertex 0's and the gradients,
-/// moved there (wrapping: see the module's text).
+/// column 0 of row `r_top`, into `out`: each attribute's value at the
+/// centre of the pixel holding vertex 0 (`(c₀, r₀)`), from vertex 0's and
+/// the gradients, moved there (wrapping: see the module's text). Each
+/// attribute's three values are written as soon as they are made.
+///
+/// # Safety
+/// `out` is valid for writes of a `Planes<N>`; every entry is written.
 #[inline(always)]
-fn planes<const N: usize>(v: &[Vtx<N>; 3], area: i32, r_top: i32) -> Planes<N> {
+unsafe fn planes<const N: usize>(v: &[Vtx<N>; 3], area: i32, r_top: i32, out: *mut Planes<N>) {
     let (c0, r0) = (v[0].x >> 4, v[0].y >> 4);
     let o = (16 * c0 + 8 - v[0].x, 16 * r0 + 8 - v[0].y);
-    let (gx, gy, off) = match gradients(v, area) {
-        Some((gx, gy)) => (gx, gy, core::array::from_fn(|k| offset(gx[k], gy[k], o))),
-        None => steep_gradients(v, area, o),
+    let put = |k: usize, gx: i32, gy: i32, off: i32| {
+        let at = (v[0].a[k] << 4)
+            .wrapping_add(off)
+            .wrapping_sub(gx.wrapping_mul(c0))
+            .wrapping_add(gy.wrapping_mul(r_top - r0));
+        // SAFETY: the caller's contract; `k < N`.
+        unsafe {
+            core::ptr::addr_of_mut!((*out).at[k]).write(at);
+            core::ptr::addr_of_mut!((*out).gx[k]).write(gx);
+            core::ptr::addr_of_mut!((*out).gy[k]).write(gy);
+        }
     };
-    let at = core::array::from_fn(|k| {
-        (v[0].a[k] << 4)
-            .wrapping_add(off[k])
-            .wrapping_sub(gx[k].wrapping_mul(c0))
-            .wrapping_add(gy[k].wrapping_mul(r_top - r0))
-    });
-    Planes { at, gx, gy }
+    if let Some(lam) = lambdas(v, area) {
+        let mut k = 0;
+        while k < N {
+            let Some((gx, gy)) = gradient(v, k, lam) else {
+                break;
+            };
+            put(k, gx, gy, offset(gx, gy, o));
+            k += 1;
+        }
+        if k == N {
+            return;
+        }
+    }
+    // A gradient that does not fit: every plane from the exact quotients
+    // (those written above overwritten).
+    let (gx, gy, off) = steep_gradients(v, area, o);
+    for k in 0..N {
+        put(k, gx[k], gy[k], off[k]);
+    }
 }
 
-/// The gradients per pixel of the attributes (units of 2⁻⁴ of an
-/// attribute), from the barycentric coordinates' gradients, or `None`
-/// where they do not fit this form.
+/// The barycentric coordinates' gradients `Λ` of triangle `v` (doubled
+/// area `area`, not 0), for [`gradient`], or `None` where they do not fit
+/// this form.
 ///
 /// Vertex `k`'s weight `λₖ` has gradients `∂λ₁/∂x = dy₂/A`, `∂λ₁/∂y =
 /// −dx₂/A`, `∂λ₂/∂x = −dy₁/A`, `∂λ₂/∂y = dx₁/A` (per sixteenth; `A` the
@@ -188,7 +213,7 @@ fn planes<const N: usize>(v: &[Vtx<N>; 3], area: i32, r_top: i32) -> Planes<N> {
 /// or gradients do not fit (a sliver, a steep plane) takes the exact
 /// quotients ([`steep_gradients`]).
 #[inline(always)]
-fn gradients<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<([i32; N], [i32; N])> {
+fn lambdas<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<[i32; 4]> {
     let (dx1, dy1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (dx2, dy2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let a = area.unsigned_abs();
@@ -200,17 +225,19 @@ fn gradients<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<([i32; N], [i
     let sign = if area < 0 { -1 } else { 1 };
     // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31.
     let lam = |s: i32| shr_to_i32(mul_i32_u32(s * sign, r), 31 - n);
-    let (l1x, l1y, l2x, l2y) = (lam(dy2)?, lam(-dx2)?, lam(-dy1)?, lam(dx1)?);
-    let (mut gx, mut gy) = ([0i32; N], [0i32; N]);
-    for k in 0..N {
-        let d1 = v[1].a[k] - v[0].a[k];
-        let d2 = v[2].a[k] - v[0].a[k];
-        // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
-        let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
-        gx[k] = g(l1x, l2x)?;
-        gy[k] = g(l1y, l2y)?;
-    }
-    Some((gx, gy))
+    Some([lam(dy2)?, lam(dx2.wrapping_neg())?, lam(dy1.wrapping_neg())?, lam(dx1)?])
+}
+
+/// Attribute `k`'s gradients per pixel (units of 2⁻⁴ of an attribute)
+/// from the `Λ` of [`lambdas`] (`Λ₁ₓ, Λ₁ᵧ, Λ₂ₓ, Λ₂ᵧ`), or `None` where one
+/// does not fit `i32`.
+#[inline(always)]
+fn gradient<const N: usize>(v: &[Vtx<N>; 3], k: usize, lam: [i32; 4]) -> Option<(i32, i32)> {
+    let d1 = v[1].a[k] - v[0].a[k];
+    let d2 = v[2].a[k] - v[0].a[k];
+    // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
+    let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
+    Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?))
 }
 
 /// `⌊p/2ᵏ⌋` (`k ≤ 31`) if it fits `i32`: from `p`'s 32-bit halves, a
