@@ -290,6 +290,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         };
         stats.drawn = stats.drawn.saturating_add(1);
         let mut table = [MaybeUninit::uninit(); CHUNK];
+        // Most triangles: every row at once, one call of the output.
+        if let Some(rows) = walk.all(&mut table) {
+            let res = out.rows(depth, rows, (walk.y, 0), walk.cols, planes, sh);
+            if let Ok(w) = res {
+                stats.pixels = stats.pixels.saturating_add(w);
+            }
+            return res.map(|_| ());
+        }
         // A triangle's pixels are at most 2¹¹ × 2¹¹: no overflow.
         let (mut pixels, top) = (0u32, walk.y);
         let res = loop {

@@ -213,9 +213,56 @@ impl Walk {
         unsafe { core::slice::from_raw_parts(rows.as_ptr().cast::<Row>(), k) }
     }
 
+    /// All the rows' spans in `rows` at once, for a walk that has at most
+    /// [`CHUNK`] rows left and needs no clamp (most triangles): the two
+    /// segments in loops of their own, the edges in locals; `None` for
+    /// any other walk (then [`Walk::fill`]).
+    #[inline(always)]
+    pub(crate) fn all<'r>(&self, rows: &'r mut [MaybeUninit<Row>; CHUNK]) -> Option<&'r [Row]> {
+        let n = (self.last - self.y + 1) as usize;
+        if self.clamp || n > CHUNK {
+            return None;
+        }
+        let (mut l, mut r) = (self.left, self.right);
+        let upper = if self.switch > self.last {
+            n
+        } else {
+            (self.switch - self.y) as usize
+        };
+        let (a, b) = rows.get_mut(..n)?.split_at_mut(upper.min(n));
+        for row in a {
+            row.write(Row {
+                x0: l.q,
+                n: r.q - l.q,
+            });
+            l.advance();
+            r.advance();
+            platform::keep_loop_rolled();
+        }
+        if !b.is_empty() {
+            let e = Edge::new(self.lower.0, self.lower.1, 16 * self.switch + 8);
+            if self.long_left {
+                r = e;
+            } else {
+                l = e;
+            }
+            for row in b {
+                row.write(Row {
+                    x0: l.q,
+                    n: r.q - l.q,
+                });
+                l.advance();
+                r.advance();
+                platform::keep_loop_rolled();
+            }
+        }
+        // SAFETY: the first `n` rows were written just above.
+        Some(unsafe { core::slice::from_raw_parts(rows.as_ptr().cast::<Row>(), n) })
+    }
+
     /// Calls `span` for each non-empty span on `planes`, top to bottom,
-    /// until it fails (for tests and the rare callers that want spans one
-    /// by one).
+    /// until it fails (for tests): every row at once where [`Walk::all`]
+    /// takes the walk, else table by table, as a draw does.
     #[cfg(test)]
     pub(crate) fn run<const N: usize, E>(
         mut self,
@@ -224,9 +271,18 @@ impl Walk {
     ) -> Result<(), E> {
         let first = self.y;
         let mut rows = [MaybeUninit::uninit(); CHUNK];
+        // As the draw takes them: every row at once where it can, else
+        // table by table.
+        let mut whole = self.all(&mut rows).map(<[Row]>::to_vec);
         loop {
             let y = self.y;
-            let table = self.fill(&mut rows);
+            let table = match whole.take() {
+                Some(t) => {
+                    self.y = self.last + 1;
+                    t
+                }
+                None => self.fill(&mut rows).to_vec(),
+            };
             if table.is_empty() {
                 return Ok(());
             }
