@@ -189,11 +189,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         depth: &mut D,
         stats: &mut DrawStats,
     ) -> Result<(), O::Error> {
-        if self.options.dither {
-            self.draw(v, area, rect, out, depth, stats, &span::GouraudDithered)
-        } else {
-            self.draw(v, area, rect, out, depth, stats, &span::Gouraud)
-        }
+        let sh = span::Gouraud {
+            dither: self.options.dither,
+        };
+        self.draw(v, area, rect, out, depth, stats, &sh)
     }
 
     /// The flat shader: the equation at the centroid with the face normal.

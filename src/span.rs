@@ -93,33 +93,64 @@ pub(crate) trait Shader<const N: usize>: Sized {
     }
 }
 
-/// Gouraud colours: attributes 1–3 are the red, green and blue planes.
-pub(crate) struct Gouraud;
+/// Gouraud colours: attributes 1–3 are the red, green and blue planes;
+/// with `dither`, the 4 × 4 Bayer threshold in place of the planes' ½,
+/// clamped to the channel. (One shader for both, chosen per span and per
+/// table of rows: a draw's code is not made twice for a switch.)
+pub(crate) struct Gouraud {
+    pub(crate) dither: bool,
+}
+
+/// A dithered Gouraud pixel at target pixel `(x, y)`.
+#[inline(always)]
+fn dithered(a: &[i32; 4], x: i32, y: i32) -> u16 {
+    let t = (BAYER[(y & 3) as usize][(x & 3) as usize] as i32) << 4;
+    let c = |v: i32, max: i32| ((v - (1 << 19) + t) >> 20).clamp(0, max) as u32;
+    pack565(c(a[1], 31), c(a[2], 63), c(a[3], 31))
+}
 
 impl Shader<4> for Gouraud {
     #[inline(always)]
-    fn pixel(&self, a: &[i32; 4], _: i32, _: i32) -> u16 {
-        platform::pack_planes(a[1], a[2], a[3])
+    fn pixel(&self, a: &[i32; 4], x: i32, y: i32) -> u16 {
+        if self.dither {
+            dithered(a, x, y)
+        } else {
+            platform::pack_planes(a[1], a[2], a[3])
+        }
     }
 
-    /// Two pixels at a time ([`Pairs`]).
+    /// Two pixels at a time ([`Pairs`]) where not dithered.
     #[inline(always)]
-    fn fill(&self, row: &mut [u16], s: &Span<4>, _: (i32, i32)) {
-        Pairs::fill(row, s)
+    fn fill(&self, row: &mut [u16], s: &Span<4>, at: (i32, i32)) {
+        if self.dither {
+            fill(self, row, &s.start(), s.step(), at)
+        } else {
+            Pairs::fill(row, s)
+        }
     }
 
     #[inline(always)]
-    fn colours<'s>(&'s self, s: &Span<4>, _: (i32, i32)) -> impl Iterator<Item = u16> + 's {
+    fn colours<'s>(&'s self, s: &Span<4>, at: (i32, i32)) -> impl Iterator<Item = u16> + 's {
+        let dither = self.dither;
         let (mut p, mut w) = (Pairs::of(s), 0);
+        let (mut a, d, (mut x, y)) = (s.start(), *s.step(), at);
         (0..s.n).map(move |k| {
-            if k & 1 == 0 {
-                w = p.next();
+            if dither {
+                let c = dithered(&a, x, y);
+                step(&mut a, &d, 1);
+                x = x.wrapping_add(1);
+                c
+            } else {
+                if k & 1 == 0 {
+                    w = p.next();
+                }
+                (w >> (16 * (k & 1))) as u16
             }
-            (w >> (16 * (k & 1))) as u16
         })
     }
 
-    /// The platform's loop (assembly on the Cortex-M cores).
+    /// The platform's loop (assembly on the Cortex-M cores) where not
+    /// dithered.
     #[inline(always)]
     fn rows_depth(
         &self,
@@ -131,6 +162,9 @@ impl Shader<4> for Gouraud {
         first: i64,
         width: u32,
     ) -> Option<u32> {
+        if self.dither {
+            return None;
+        }
         let mut run = platform::Rows::new(planes, dy, table, buf, zbuf, first, width);
         Some(platform::gouraud_depth_rows(&mut run))
     }
@@ -263,19 +297,6 @@ fn next_anchor(a: [i32; 3], d: [i32; 3]) -> [i32; 3] {
 #[inline(always)]
 fn add3(a: [i32; 3], b: [i32; 3]) -> [i32; 3] {
     [0, 1, 2].map(|k| a[k].wrapping_add(b[k]))
-}
-
-/// Gouraud colours with ordered dithering: the 4 × 4 Bayer threshold in
-/// place of the planes' ½, clamped to the channel.
-pub(crate) struct GouraudDithered;
-
-impl Shader<4> for GouraudDithered {
-    #[inline(always)]
-    fn pixel(&self, a: &[i32; 4], x: i32, y: i32) -> u16 {
-        let t = (BAYER[(y & 3) as usize][(x & 3) as usize] as i32) << 4;
-        let c = |v: i32, max: i32| ((v - (1 << 19) + t) >> 20).clamp(0, max) as u32;
-        pack565(c(a[1], 31), c(a[2], 63), c(a[3], 31))
-    }
 }
 
 /// One colour for the whole triangle.

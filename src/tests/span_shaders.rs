@@ -66,7 +66,8 @@ impl DrawTarget for Display {
     }
 }
 
-fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 4] {
+fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>, dither: bool) -> [Vec<u16>; 4] {
+    let sh = Gouraud { dither };
     // The planes at column 0 of row 0, so that the span's start is `s`.
     let planes = Planes {
         at: core::array::from_fn(|k| s[k].wrapping_sub(d[k].wrapping_mul(2))),
@@ -96,13 +97,13 @@ fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 
             d1.row(3, 0, W as u32).copy_from_slice(row);
             d2.row(3, 0, W as u32).copy_from_slice(row);
             (
-                out.span(&mut d1, &span, &Gouraud).unwrap(),
-                sink.span(&mut d2, &span, &Gouraud).unwrap(),
+                out.span(&mut d1, &span, &sh).unwrap(),
+                sink.span(&mut d2, &span, &sh).unwrap(),
             )
         }
         None => (
-            out.span(&mut NoDepth, &span, &Gouraud).unwrap(),
-            sink.span(&mut NoDepth, &span, &Gouraud).unwrap(),
+            out.span(&mut NoDepth, &span, &sh).unwrap(),
+            sink.span(&mut NoDepth, &span, &sh).unwrap(),
         ),
     };
     assert_eq!(w1, w2, "pixels written");
@@ -110,22 +111,25 @@ fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>) -> [Vec<u16>; 
 }
 
 proptest! {
-    /// Without a depth test and through one that some pixels fail, both
-    /// outputs write the same pixels, the same depths and the same count.
+    /// Without a depth test and through one that some pixels fail, dithered
+    /// or not, both outputs write the same pixels, the same depths and the
+    /// same count.
     #[test]
     fn memory_and_draw_target_agree((s, d, n) in span(), stored in prop::collection::vec(0u16..=u16::MAX, W)) {
-        let [a, b, _, _] = both(s, d, n, None);
-        prop_assert_eq!(a, b);
-        let [a, b, za, zb] = both(s, d, n, Some(&stored));
-        prop_assert_eq!(a, b);
-        prop_assert_eq!(za, zb);
+        for dither in [false, true] {
+            let [a, b, _, _] = both(s, d, n, None, dither);
+            prop_assert_eq!(a, b);
+            let [a, b, za, zb] = both(s, d, n, Some(&stored), dither);
+            prop_assert_eq!(a, b);
+            prop_assert_eq!(za, zb);
+        }
     }
 
     /// Without a depth test, Gouraud spans go two pixels at a time in
     /// 16-bit lanes: each channel within one of its plane's `>> 20`.
     #[test]
     fn pairs_stay_within_one_of_the_planes((s, d, n) in span()) {
-        let [px, _, _, _] = both(s, d, n, None);
+        let [px, _, _, _] = both(s, d, n, None, false);
         for k in 0..n as usize {
             let got = px[3 * W + 2 + k];
             let plane = |c: usize| s[c].wrapping_add(d[c].wrapping_mul(k as i32)) >> 20;
