@@ -225,7 +225,12 @@ fn lambdas<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<[i32; 4]> {
     let sign = if area < 0 { -1 } else { 1 };
     // |side| < 2¹⁵, r < 2³²: the product below 2⁴⁷; n ≤ 31.
     let lam = |s: i32| shr_to_i32(mul_i32_u32(s * sign, r), 31 - n);
-    Some([lam(dy2)?, lam(dx2.wrapping_neg())?, lam(dy1.wrapping_neg())?, lam(dx1)?])
+    Some([
+        lam(dy2)?,
+        lam(dx2.wrapping_neg())?,
+        lam(dy1.wrapping_neg())?,
+        lam(dx1)?,
+    ])
 }
 
 /// Attribute `k`'s gradients per pixel (units of 2⁻⁴ of an attribute)
