@@ -34,10 +34,10 @@
 //! # Finding a band's triangles
 //! A frame's triangles are split into [`CHUNKS`] runs of consecutive
 //! triangles; a first pass records each run's rows (the union of its
-//! visible triangles' rows, or the whole viewport for one that crosses the
-//! near plane) in a table on the stack, and which of the run's first 32
-//! triangles can draw anything at all (a bit mask: back faces when
-//! culling, triangles without area, behind the eye or off-screen cannot).
+//! visible triangles' rows, or the whole viewport for one with a vertex
+//! for the rare path) in a table on the stack, and which of the run's
+//! first 32 triangles can draw anything at all (a bit mask: back faces
+//! when culling, triangles without area and triangles off-screen cannot).
 //! A band visits only the runs whose rows it meets, skips the masked-out
 //! triangles, and rejects the others by their rows before any set-up. Meshes whose consecutive triangles are close on screen (grids,
 //! spheres, most scanned meshes) make this cheap; the worst case is every

@@ -200,7 +200,7 @@ fn add_lanes(l: [u32; 3], s: [u32; 3]) -> [u32; 3] {
 /// margin of 2¹⁹ `Q.20` units (2¹⁰ and 2⁹ lane units), so no lane leaves
 /// its 16 bits at a covered pixel. A pixel's channel may differ from its
 /// plane's `>> 20` by one where the plane lies within 2¹⁴ units of a step
-/// (measured: S2, a full-screen gradient, 99.4 % of pixels equal to the
+/// (measured: S2, a full-screen gradient, 99.5 % of pixels equal to the
 /// reference; at most 1 LSB everywhere). The same span gives the same
 /// pixels in memory and through a `DrawTarget`: blocks start at the
 /// span's first pixel.
@@ -321,7 +321,7 @@ impl Shader<1> for Flat {
 }
 
 /// Phong shading: attributes 1–3 the normal, 4–6 the eye position
-/// relative to `origin` and shifted right by `shift` (`src/triangle.rs`).
+/// relative to `origin` and shifted right by `shift` (`src/shade.rs`).
 pub(crate) struct Phong<'l, S: Specular, V: Viewer, L: LightSet> {
     pub(crate) lighting: &'l Lighting<S, V, L>,
     pub(crate) origin: [i64; 3],

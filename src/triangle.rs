@@ -6,7 +6,10 @@
 //! `src/vertex.rs`), in 32-bit arithmetic. Anything else — a vertex behind
 //! the near plane or outside the guard band, a draw whose rows do not
 //! allow the 32-bit vertex form — goes to the rare path (`src/clip.rs`).
-//! Both end in [`Frame::pieces`](crate::shade::Frame::pieces).
+//! The lean path draws the triangle whole
+//! ([`Frame::whole`](crate::shade::Frame::whole)), the rare path what
+//! clipping leaves of it ([`Frame::pieces`](crate::shade::Frame::pieces));
+//! both end in the set-up and the walk.
 //!
 //! # Facing
 //! A triangle faces the way its unsnapped window positions do. One that

@@ -1092,8 +1092,8 @@ fn markdown(rows: &[Row], args: &Args, view: &DeviceView) -> String {
          - **Fixed point against floats**: the kernel against the f64 reference.\n\
          - Not knobs, so not swept: the specular table is one fixed table of 832 bytes \
          (no size to choose), and the interpolation keeps a fixed 16 fractional bits \
-         below the RGB565 step (spans of 16 pixels or more: 11, 10 for green, re-anchored \
-         every 64 pixels; see src/span.rs).\n"
+         below the RGB565 step (undithered Gouraud spans without a depth test: 11, 10 for \
+         green, re-anchored every 64 pixels; see src/span.rs).\n"
     );
     let _ = writeln!(w, "## Errors\n");
     let _ = writeln!(

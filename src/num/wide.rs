@@ -1,4 +1,4 @@
-//! `Wide`: a value `m·2^e` with a 62-bit mantissa, for what is computed
+//! `Wide`: a value `m·2^e` with a 61-bit mantissa, for what is computed
 //! once a draw or on the rare path, where magnitudes span more than any
 //! fixed-point format: the composition of the vertex stage's rows, and the
 //! clipping planes' distances.

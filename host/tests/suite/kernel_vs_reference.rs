@@ -82,14 +82,15 @@ fn cube_flat() {
 /// pixel position, and each stored depth is compared with `d` at the
 /// pixel's centre.
 ///
-/// The kernel interpolates the attribute `z_w·65535·2⁸ + 2⁷` with integer
-/// gradients per pixel, each rounded (½ unit), from a vertex at most 64
-/// pixels away on each axis: the value at a pixel is off by at most
-/// ½·(64 + 64) units from the exact plane through the vertex values, plus
-/// ½ for the anchor's rounding, below 1 for each vertex's floor and well
-/// below 1 for the fixed-point projection: under 68 units, 68/256 of a
-/// depth step. So the stored depth is `d` wherever `z_w·65535` lies
-/// further than that from a half, and within 1 of it everywhere.
+/// The kernel interpolates the attribute `z_w·65535·2⁸ + 2⁷` in planes of
+/// 2⁻⁴ of its unit, each gradient per pixel within ½ of that plus a
+/// barycentric term (`src/setup.rs`), from a vertex at most 64 pixels away
+/// on each axis: the value at a pixel is off by at most a few units from
+/// the exact plane through the vertex values (the set-up's bound), below 1
+/// for each vertex's floor and well below 1 for the fixed-point
+/// projection: far under 68 units, 68/256 of a depth step. So the stored
+/// depth is `d` wherever `z_w·65535` lies further than that from a half,
+/// and within 1 of it everywhere.
 #[test]
 fn kernel_depth_is_the_spec_quantisation() {
     use fixshade::framebuffer::Framebuffer;
