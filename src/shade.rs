@@ -95,7 +95,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 self.draw(&v, area, rect, out, depth, stats, &sh)
             }
             ShadingKind::Phong => {
-                let (a, sh) = self.phong(c, back);
+                let (e, n) = self.phong_corners(c, back);
+                let (a, sh) = self.phong(e, n);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
                 self.draw(&v, area, rect, out, depth, stats, &sh)
             }
@@ -149,11 +150,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 Ok(())
             }
             ShadingKind::Phong => {
-                let (a, sh) = self.phong(c, back);
+                let (e, n) = self.phong_corners(c, back);
+                // Positions relative to vertex 0 (differences below 2³²).
+                let rel = e.map(|p| [0, 1, 2].map(|j| p[j] - e[0][j]));
                 for t in tris {
-                    let v = t.map(|k| {
-                        let (x, y, z) = corner(k);
-                        let mut a = mix(weights(k), &a);
+                    let pe = t.map(|k| {
+                        let d = mix_wide(weights(k), &rel);
+                        [0, 1, 2].map(|j| e[0][j] + d[j])
+                    });
+                    let (a, sh) = self.phong(pe, t.map(|k| mix(weights(k), &n)));
+                    let v = [0, 1, 2].map(|j| {
+                        let (x, y, z) = corner(t[j]);
+                        let mut a = a[j];
                         a[0] = z;
                         Vtx { x, y, a }
                     });
@@ -209,31 +217,44 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
     }
 
-    /// Phong attributes of the three vertices (depth left 0) and the
-    /// shader: eye positions relative to vertex 0's, shifted right until
-    /// every difference is below 2²⁴ (the set-up's attributes stay within
-    /// ±2²⁵): full precision for a small triangle, 2⁻²⁴ of its extent for
-    /// a large one; normals with 8 more fractional bits (`Q.22`, below
-    /// 2²³).
-    fn phong(&self, c: &Corners, back: bool) -> ([[i32; 7]; 3], span::Phong<'_, S, V, L>) {
-        let en = c.vertex.map(|i| {
+    /// The three vertices' eye positions (raw) and normals (`Q.22`, below
+    /// 2²³: 8 more fractional bits than a unit vector's), for the back if
+    /// `back`.
+    fn phong_corners(&self, c: &Corners, back: bool) -> ([[i64; 3]; 3], [[i32; 3]; 3]) {
+        let e = c.vertex.map(|i| self.stage.eye(i).to_bits().map(i64::from));
+        let n = c.vertex.map(|i| {
             let n = self.stage.eye_normal(i);
-            (self.stage.eye(i), if back { n.neg() } else { n })
+            let n = if back { n.neg() } else { n };
+            n.to_bits().map(|v| (v as i32) << 8)
         });
-        let origin = en[0].0.to_bits().map(i64::from);
+        (e, n)
+    }
+
+    /// Phong attributes of three corners (eye positions `e`, normals `n`;
+    /// depth left 0) and their shader: eye positions relative to corner
+    /// 0's, shifted right until every difference is below 2²⁴ (the
+    /// set-up's attributes stay within ±2²⁵): full precision for a small
+    /// triangle, 2⁻²⁴ of its extent for a large one. (A piece the rare
+    /// path cuts from a triangle gets its own: its extent, not the
+    /// triangle's, sets the precision.) Out of line: written once for
+    /// both paths.
+    #[inline(never)]
+    fn phong(
+        &self,
+        e: [[i64; 3]; 3],
+        n: [[i32; 3]; 3],
+    ) -> ([[i32; 7]; 3], span::Phong<'_, S, V, L>) {
+        let origin = e[0];
         let mut spread = 0u64;
-        for (e, _) in &en[1..] {
-            let b = e.to_bits();
+        for p in &e[1..] {
             for k in 0..3 {
-                spread = spread.max((b[k] as i64 - origin[k]).unsigned_abs());
+                spread = spread.max((p[k] - origin[k]).unsigned_abs());
             }
         }
         let shift = (64 - spread.leading_zeros()).saturating_sub(24);
-        let a = en.map(|(e, n)| {
-            let (e, n) = (e.to_bits(), n.to_bits());
-            let rel = |j: usize| ((e[j] as i64 - origin[j]) >> shift) as i32;
-            let n = n.map(|v| (v as i32) << 8);
-            [0, n[0], n[1], n[2], rel(0), rel(1), rel(2)]
+        let a = [0, 1, 2].map(|k| {
+            let rel = |j: usize| ((e[k][j] - origin[j]) >> shift) as i32;
+            [0, n[k][0], n[k][1], n[k][2], rel(0), rel(1), rel(2)]
         });
         let sh = span::Phong {
             lighting: self.stage.lighting,
@@ -321,6 +342,15 @@ fn mix<const N: usize>(w: [i32; 3], a: &[[i32; N]; 3]) -> [i32; N] {
     core::array::from_fn(|i| {
         let s: i64 = (0..3).map(|j| w[j] as i64 * a[j][i] as i64).sum();
         ((s + (1 << 29)) >> 30) as i32
+    })
+}
+
+/// Values below 2³² in magnitude mixed by `Q.30` weights `w` (summing to
+/// 2³⁰), rounded: each product below 2⁶², their sum too.
+fn mix_wide(w: [i32; 3], a: &[[i64; 3]; 3]) -> [i64; 3] {
+    core::array::from_fn(|i| {
+        let s: i64 = (0..3).map(|j| w[j] as i64 * a[j][i]).sum();
+        (s + (1 << 29)) >> 30
     })
 }
 
