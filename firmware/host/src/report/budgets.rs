@@ -40,8 +40,8 @@ const STAGES: [(&str, &str, Budget); 8] = [
 ];
 
 /// The stage of an instruction of function `f` that ran `c` times, in a
-/// frame of `d` triangles set up and `r` rows walked.
-fn stage(f: &str, c: u64, d: u64, r: u64) -> usize {
+/// frame of `d` triangles set up and `p` pixels.
+fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
     let draw = c < d / 4;
     if f.starts_with("__") || f.starts_with("compiler_builtins::") {
         7
@@ -66,7 +66,7 @@ fn stage(f: &str, c: u64, d: u64, r: u64) -> usize {
             3
         }
     } else if f.contains("Frame<S,V,L>::draw") || f.contains("gouraud_depth_rows") {
-        if c > r {
+        if c >= p {
             5
         } else if c > 2 * d {
             4
@@ -91,7 +91,8 @@ fn stage(f: &str, c: u64, d: u64, r: u64) -> usize {
 
 /// Instructions per stage of a kept profile (`dir`: `byaddr.txt`, "0xADDR
 /// COUNT" lines, and `syms.txt`, "ADDR\tNAME" lines, addresses in decimal),
-/// and the rows walked (the most any instruction of the walk ran).
+/// and the rows walked (the most any instruction of the row loop ran, short
+/// of the pixels: S1 fails no depth test).
 fn per_stage(dir: &Path, f: &Frame) -> Result<([u64; 8], u64), String> {
     let mut syms: Vec<(u64, String)> = read(&dir.join("syms.txt"))?
         .lines()
@@ -122,13 +123,13 @@ fn per_stage(dir: &Path, f: &Frame) -> Result<([u64; 8], u64), String> {
     };
     let rows = counts
         .iter()
-        .filter(|(a, _)| name(*a).contains("Frame<S,V,L>::draw"))
+        .filter(|(a, c)| name(*a).contains("gouraud_depth_rows") && *c < f.pixels)
         .map(|(_, c)| *c)
         .max()
-        .ok_or("no walk in the profile")?;
+        .ok_or("no row loop in the profile")?;
     let mut s = [0u64; 8];
     for (a, c) in &counts {
-        s[stage(name(*a), *c, f.drawn, rows)] += c;
+        s[stage(name(*a), *c, f.drawn, f.pixels)] += c;
     }
     Ok((s, rows))
 }
@@ -165,11 +166,11 @@ pub(super) fn stage_table(
          the lighting functions; library routines apart); in the triangle loop \
          (`draw_framebuffer`) what ran more often than once a triangle set up is the cull and \
          reject, what ran less often is the set-up's; in the walk (`Frame::draw`) and the row \
-         loop (`gouraud_depth_rows`) what ran more often than a row (the most any instruction \
-         of the walk ran: {rows4} rows) is per pixel, more often than twice a triangle set up \
-         per row, else the set-up's; what ran fewer times than a quarter of the triangles set up, \
-         anywhere, is the draw's own. The library routines' calls are not followed to their \
-         callers.\n\n\
+         loop (`gouraud_depth_rows`) what ran once a pixel is per pixel, what ran more often \
+         than twice a triangle set up per row ({rows4} rows: the most any instruction of the \
+         row loop ran, short of the pixels), else the set-up's; what ran fewer times than a \
+         quarter of the triangles set up, anywhere, is the draw's own. The library routines' \
+         calls are not followed to their callers.\n\n\
          | stage | unit | units | M4F per unit | budget | M0+ per unit | budget |\n\
          | --- | --- | ---: | ---: | ---: | ---: | ---: |"
     );
