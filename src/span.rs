@@ -529,7 +529,9 @@ impl Out for Memory<'_> {
                 if w == self.width && y0 == self.y0 {
                     // The index of column 0 of the first and last rows.
                     let first = (y as u32).wrapping_mul(self.width).wrapping_add(self.at) as i64;
-                    let last = first + (rows.len() as i64 - 1) * self.width as i64;
+                    // At most 31 rows of at most 2²⁰ pixels: the product
+                    // fits u32 (a 64-bit product is a call on ARMv6-M).
+                    let last = first + ((rows.len() as u32).saturating_sub(1) * self.width) as i64;
                     let len = self.buf.len().min(zbuf.len()) as i64;
                     if first + cols.0 as i64 >= 0 && last + (cols.1 as i64) < len {
                         if let Some(w) =

@@ -93,6 +93,7 @@
 //! with every intermediate bounded in the comments below, so no input (any
 //! `u32` δ, any exponent) can overflow or panic, in debug builds included.
 
+use crate::num::widening::mul_u32;
 use crate::platform;
 use crate::vector::FormatError;
 
@@ -456,7 +457,7 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     // u = n·t in Q.24, t = s + k·ln 2. Saturate at u ≥ 16 (e^−16 < 2^−23).
     let u_q24 = if k == 0 {
         // t = s in Q.32; n in Q.8: product in Q.40, < 2^20·2^32 = 2^52.
-        let p = n_q8 as u64 * s as u64;
+        let p = mul_u32(n_q8, s);
         if p >= 16u64 << 40 {
             return 0;
         }
@@ -467,7 +468,7 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
         // sum < 2.74·10^9 < 2^32.
         let t_q27 = (s >> 5) + k * LN2_Q27;
         // Product in Q.35, < 2^20·2^32 = 2^52.
-        let p = n_q8 as u64 * t_q27 as u64;
+        let p = mul_u32(n_q8, t_q27);
         if p >= 16u64 << 35 {
             return 0;
         }
@@ -511,7 +512,7 @@ fn exp_neg_q24(u_q24: u32) -> u16 {
         // e^−ku·e^−f = E − E·om/2^32 in Q.32, E = e^−ku in Q.32 < 2^31.
         // E·om < 2^63; (E·om) >> 32 < E since om < 2^32: no underflow.
         let e = EXP_NEG_INT[ku - 1];
-        let v = e - ((e as u64 * om as u64) >> 32) as u32;
+        let v = e - (mul_u32(e, om) >> 32) as u32;
         // v < 2^31; rounded (halves up) to Q.15: < 2^14.
         ((v + (1 << 16)) >> 17) as u16
     }
