@@ -374,7 +374,7 @@ mod tests {
             r1: h - 1,
         };
         if let Some(Triangle { planes, walk }) = set_up(v, a, &rect, &mut MaybeUninit::uninit()) {
-            walk.run(&planes, |s| {
+            walk.run(planes, |s| {
                 got.push((s.y, s.x0, s.x0 + s.n as i32 - 1, s.start()[0]));
                 Ok::<(), ()>(())
             })
@@ -460,7 +460,7 @@ mod tests {
             if let Some(Triangle { planes, walk: w }) =
                 set_up(&v, a, &rect, &mut MaybeUninit::uninit())
             {
-                w.run(&planes, |s| {
+                w.run(planes, |s| {
                     for k in 0..s.n as i32 {
                         let p = s.start()[0].wrapping_add(s.step()[0].wrapping_mul(k));
                         assert!(p.unsigned_abs() <= (ATTR as u32) * 16 + (1 << 11), "{v:?}");

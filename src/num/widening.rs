@@ -57,14 +57,14 @@ pub(crate) fn mul_i32_u32_shr31(a: i32, b: u32) -> i32 {
     }
 }
 
-/// [`mul_i32_u32_shr31`] from four 16 × 16-bit products: with `a = aₕ·2¹⁶
-/// + aₗ` (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`), `b` likewise (unsigned), `x₁ =
-/// aₕbₗ` (`|x₁| < 2³¹`), `x₂ = aₗbₕ` and `x₃ = aₗbₗ` (below 2³², split in
-/// halves), `a·b = (aₕbₕ + x₂ₕ)·2³² + (x₁ + x₂ₗ + x₃ₕ)·2¹⁶ + x₃ₗ`; the
-/// last term, below 2¹⁶, cannot change the floor by 2³¹ of a multiple of
-/// 2¹⁶, so `⌊a·b/2³¹⌋ = 2(aₕbₕ + x₂ₕ) + ⌊(x₁ + x₂ₗ + x₃ₕ)/2¹⁵⌋`, the last
-/// floor taken as `⌊x₁/2¹⁵⌋ + ⌊(x₁ mod 2¹⁵ + x₂ₗ + x₃ₕ)/2¹⁵⌋` (no sum
-/// past 2¹⁸), the terms summed modulo 2³².
+/// [`mul_i32_u32_shr31`] from four 16 × 16-bit products. With `a =
+/// aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`) and `b` likewise
+/// (unsigned), `x₁ = aₕbₗ` (`|x₁| < 2³¹`), `x₂ = aₗbₕ` and `x₃ = aₗbₗ`
+/// (below 2³², split in halves): `a·b = (aₕbₕ + x₂ₕ)·2³² + (x₁ + x₂ₗ +
+/// x₃ₕ)·2¹⁶ + x₃ₗ`. The last term, below 2¹⁶, cannot change the floor by
+/// 2³¹ of a multiple of 2¹⁶, so `⌊a·b/2³¹⌋ = 2(aₕbₕ + x₂ₕ) + ⌊(x₁ + x₂ₗ +
+/// x₃ₕ)/2¹⁵⌋`, the last floor taken as `⌊x₁/2¹⁵⌋ + ⌊(x₁ mod 2¹⁵ + x₂ₗ +
+/// x₃ₕ)/2¹⁵⌋` (no sum past 2¹⁸), the terms summed modulo 2³².
 #[inline(always)]
 pub(crate) fn mul_i32_u32_shr31_limbs(a: i32, b: u32) -> i32 {
     let (ah, al) = (a >> 16, (a & 0xFFFF) as u32);

@@ -63,7 +63,7 @@ fn kernel(v: [(i64, i64); 3], size: i64, rows: (i64, i64)) -> Vec<(i64, i64)> {
         r1: rows.1 as i32,
     };
     if let Some(Triangle { planes, walk }) = set_up(&t, a, &rect, &mut MaybeUninit::uninit()) {
-        walk.run(&planes, |s| {
+        walk.run(planes, |s| {
             out.extend((s.x0..s.x0 + s.n as i32).map(|x| (x as i64, s.y as i64)));
             Ok::<(), ()>(())
         })
@@ -191,7 +191,7 @@ proptest! {
         for rows in [(rect.r0, rect.r1), (band, band + 3)] {
             let mut got = Vec::new();
             if let Some(Triangle { planes, walk: w }) = set_up(&v, ar, &Rect { r0: rows.0, r1: rows.1, ..rect }, &mut MaybeUninit::uninit()) {
-                w.run(&planes, |s| {
+                w.run(planes, |s| {
                     for k in 0..s.n as i32 {
                         let (x, y) = (s.x0 + k, s.y);
                         let value = s.start()[0].wrapping_add(s.step()[0].wrapping_mul(k));
