@@ -207,8 +207,9 @@ pub enum RenderError<E> {
 }
 
 impl<E> RenderError<E> {
-    /// The target's own error apart (`Err`), or the renderer's (`Ok`).
-    pub(crate) fn split(self) -> Result<RenderError<core::convert::Infallible>, E> {
+    /// The same error for a target of error type `F`, or the target's own
+    /// (`Err`).
+    fn convert<F>(self) -> Result<RenderError<F>, E> {
         Ok(match self {
             RenderError::Mesh(m) => RenderError::Mesh(m),
             RenderError::Camera(c) => RenderError::Camera(c),
@@ -220,20 +221,19 @@ impl<E> RenderError<E> {
             RenderError::Target(e) => return Err(e),
         })
     }
+
+    /// The target's own error apart (`Err`), or the renderer's (`Ok`).
+    pub(crate) fn split(self) -> Result<RenderError<core::convert::Infallible>, E> {
+        self.convert()
+    }
 }
 
 impl RenderError<core::convert::Infallible> {
     /// An error of a sink that cannot fail (memory) as another target's.
     pub(crate) fn lift<E>(self) -> RenderError<E> {
-        match self {
-            RenderError::Mesh(m) => RenderError::Mesh(m),
-            RenderError::Camera(c) => RenderError::Camera(c),
-            RenderError::CacheTooSmall => RenderError::CacheTooSmall,
-            RenderError::NoNormals => RenderError::NoNormals,
-            RenderError::DepthTooSmall => RenderError::DepthTooSmall,
-            RenderError::BandTooSmall => RenderError::BandTooSmall,
-            RenderError::TargetTooLarge => RenderError::TargetTooLarge,
-            RenderError::Target(e) => match e {},
+        match self.convert() {
+            Ok(e) => e,
+            Err(never) => match never {},
         }
     }
 }

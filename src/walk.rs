@@ -157,6 +157,22 @@ impl<const N: usize> Span<'_, N> {
     }
 }
 
+/// The spans of `rows.len()` rows between edges `l` and `r`, unclamped,
+/// into `rows`; returns the edges stepped past them.
+#[inline(always)]
+fn segment(rows: &mut [MaybeUninit<Row>], mut l: Edge, mut r: Edge) -> (Edge, Edge) {
+    for row in rows {
+        row.write(Row {
+            x0: l.q,
+            n: r.q - l.q,
+        });
+        l.advance();
+        r.advance();
+        platform::keep_loop_rolled();
+    }
+    (l, r)
+}
+
 impl Walk {
     /// Fills `rows` with the spans of the next rows, as many as fit or are
     /// left; returns them. (`rows` is not cleared before: a table of 256
@@ -196,15 +212,7 @@ impl Walk {
                     platform::keep_loop_rolled();
                 }
             } else {
-                for row in out {
-                    row.write(Row {
-                        x0: l.q,
-                        n: r.q - l.q,
-                    });
-                    l.advance();
-                    r.advance();
-                    platform::keep_loop_rolled();
-                }
+                (l, r) = segment(out, l, r);
             }
             (self.left, self.right, self.y) = (l, r, stop);
             k += m;
@@ -230,15 +238,7 @@ impl Walk {
             (self.switch - self.y) as usize
         };
         let (a, b) = rows.get_mut(..n)?.split_at_mut(upper.min(n));
-        for row in a {
-            row.write(Row {
-                x0: l.q,
-                n: r.q - l.q,
-            });
-            l.advance();
-            r.advance();
-            platform::keep_loop_rolled();
-        }
+        (l, r) = segment(a, l, r);
         if !b.is_empty() {
             let e = Edge::new(self.lower.0, self.lower.1, 16 * self.switch + 8);
             if self.long_left {
@@ -246,15 +246,7 @@ impl Walk {
             } else {
                 l = e;
             }
-            for row in b {
-                row.write(Row {
-                    x0: l.q,
-                    n: r.q - l.q,
-                });
-                l.advance();
-                r.advance();
-                platform::keep_loop_rolled();
-            }
+            segment(b, l, r);
         }
         // SAFETY: the first `n` rows were written just above.
         Some(unsafe { core::slice::from_raw_parts(rows.as_ptr().cast::<Row>(), n) })

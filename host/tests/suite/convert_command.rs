@@ -56,6 +56,19 @@ fn convert<S: AsRef<OsStr>>(args: &[S]) -> Run {
 /// Converts `input` to `output`, expecting bad input refused: exit code 2,
 /// one line on stderr starting with `fixshade-convert: {prefix}` and
 /// containing `needle`, nothing on stdout and no output written.
+/// Writes `text` as `dir/name` and checks that the converter refuses it
+/// with a line naming the file and holding `needle`.
+fn refuses_file(dir: &Path, name: &str, text: &[u8], needle: &str) {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    refuses(
+        path.as_os_str(),
+        &dir.join("out.fxm"),
+        &format!("{}: ", path.display()),
+        needle,
+    );
+}
+
 fn refuses(input: &OsStr, output: &Path, prefix: &str, needle: &str) {
     let run = convert(&[input, output.as_os_str()]);
     let err = &run.stderr;
@@ -105,12 +118,10 @@ fn refuses_a_file_past_the_size_cap() {
     while (obj.len() as u64) <= MAX_FILE_BYTES {
         obj.extend_from_slice(comment.as_bytes());
     }
-    let path = dir.join("past.obj");
-    std::fs::write(&path, &obj).unwrap();
-    refuses(
-        path.as_os_str(),
-        &dir.join("out.fxm"),
-        &format!("{}: ", path.display()),
+    refuses_file(
+        &dir,
+        "past.obj",
+        &obj,
         &format!("larger than {MAX_FILE_BYTES} bytes"),
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -126,14 +137,7 @@ fn refuses_a_mesh_without_triangles() {
         ("comments.obj", "# a comment\n\n# another\n"),
         ("vertices.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n"),
     ] {
-        let path = dir.join(name);
-        std::fs::write(&path, text).unwrap();
-        refuses(
-            path.as_os_str(),
-            &dir.join("out.fxm"),
-            &format!("{}: ", path.display()),
-            "no triangle",
-        );
+        refuses_file(&dir, name, text.as_bytes(), "no triangle");
     }
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -241,14 +245,7 @@ fn refuses_bad_obj_text() {
         ),
     ];
     for (name, text, needle) in cases {
-        let path = dir.join(name);
-        std::fs::write(&path, text).unwrap();
-        refuses(
-            path.as_os_str(),
-            &dir.join("out.fxm"),
-            &format!("{}: ", path.display()),
-            needle,
-        );
+        refuses_file(&dir, name, text, needle);
     }
     std::fs::remove_dir_all(&dir).ok();
 }
