@@ -305,7 +305,10 @@ pub enum ObjErrorKind {
 
 impl fmt::Display for ObjError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "line {}: ", self.line)?;
+        // A read error is the file's, not a line's.
+        if !matches!(self.kind, ObjErrorKind::Read(_)) {
+            write!(f, "line {}: ", self.line)?;
+        }
         match &self.kind {
             ObjErrorKind::MissingCoordinate => write!(f, "expected three coordinates"),
             ObjErrorKind::BadNumber(t) => write!(f, "`{t}` is not a finite number"),

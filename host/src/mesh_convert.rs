@@ -107,7 +107,7 @@ impl std::error::Error for ConvertError {}
 /// use fixshade_host::mesh_convert::{MeshData, ObjFileError};
 /// let err = MeshData::from_obj_file("tests/data/no such file.obj").unwrap_err();
 /// assert!(matches!(err, ObjFileError::Obj(_)));
-/// assert!(err.to_string().starts_with("OBJ line 0: cannot read: "));
+/// assert!(err.to_string().starts_with("OBJ: cannot read: "));
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ObjFileError {
@@ -120,7 +120,7 @@ pub enum ObjFileError {
 impl fmt::Display for ObjFileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            ObjFileError::Obj(e) => write!(f, "OBJ {e}"),
+            ObjFileError::Obj(e) => write!(f, "OBJ: {e}"),
             ObjFileError::Convert(e) => write!(f, "{e}"),
         }
     }

@@ -710,8 +710,9 @@ fn obj_file(path: &Path) -> Result<MeshDesc> {
 /// converter reads its input: a regular file (a device, a FIFO or a folder
 /// is refused before it is opened) of at most [`MAX_FILE_BYTES`] (a larger
 /// file is refused while it is read). A file that cannot be opened, or is
-/// not a regular file, is an error of line 0 ([`ObjErrorKind::Read`], the
-/// operating system's message or `not a regular file`).
+/// not a regular file, is an error of no line (line 0, shown without it:
+/// [`ObjErrorKind::Read`], the operating system's message or `not a
+/// regular file`).
 ///
 /// ```
 /// use std::path::Path;
