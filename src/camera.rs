@@ -6,6 +6,7 @@
 //! eye-space positions, which are `I8F24`, giving clip coordinates in
 //! `I40F24`: at most `2³¹ · 2⁷ ≈ 2³⁸` raw for a coefficient below 2⁷).
 
+use crate::mesh::Bounds;
 use crate::num::widening::mul_i32;
 use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
 
@@ -114,6 +115,8 @@ struct Lens {
     sy: i32,
     a: i32,
     b: i32,
+    /// The near plane's distance, raw `I8F24` (0 for one below 2⁻²⁵).
+    near: i32,
     perspective: bool,
 }
 
@@ -153,6 +156,7 @@ impl Lens {
                     sy: q24(fl),
                     a: q24((f + n) / (n - f)),
                     b: q24(2.0 * f * n / (n - f)),
+                    near: q24(n),
                     perspective: true,
                 }
             }
@@ -163,6 +167,7 @@ impl Lens {
                     sy: q24(2.0 / h),
                     a: q24(-2.0 / (f - n)),
                     b: q24(-(f + n) / (f - n)),
+                    near: q24(n),
                     perspective: false,
                 }
             }
@@ -373,6 +378,88 @@ impl Camera {
             perspective: l.perspective,
         })
     }
+
+    /// Whether the world's absolute formats resolve a mesh in `bounds`
+    /// placed by `model` and seen through this camera on a target `height`
+    /// pixels tall: whether the steps of the `I8F24` positions and
+    /// matrices (2⁻²⁴ world units) move its pixels by at most about
+    /// 1/512 px. A draw where they do not is refused
+    /// ([`RenderError::SceneTooSmall`](crate::render::RenderError::SceneTooSmall)):
+    /// past that the frame drifts from the exact one (measured: more than
+    /// 1 % of the pixels 1 LSB off, or coverage 0.1 % wrong, from about
+    /// 1/200 px). Express such a scene in smaller units (larger numbers).
+    ///
+    /// The estimate: the quantised view, model and box place a point within
+    /// about `2⁻²⁴·(4 + 4R + D)` world units of where they should, `R` the
+    /// largest coordinate of the box in object units and `D` the scene's
+    /// scale in eye space, the largest coordinate the box reaches there
+    /// (its distance, or its size where it reaches the eye; at least
+    /// `near`); seen at that distance, that is that times
+    /// `height·cot(fovy/2)/(2D)` pixels (orthographic: `height/view
+    /// height`). `tests/suite/world_scale.rs` holds the scenes it accepts
+    /// to the accuracy bound, from 10⁻⁶ to 1 in scale.
+    ///
+    /// ```
+    /// use fixshade::camera::{Camera, Projection};
+    /// use fixshade::mesh::Bounds;
+    /// use fixshade::Mat4;
+    /// let unit = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    /// assert!(unit.resolves(&Mat4::IDENTITY, &Bounds::UNIT, 240));
+    /// // The same scene a thousand times smaller: a micrometre is 17 steps.
+    /// let tiny = Camera::look_at([0.0, 0.0, 0.003], [0.0; 3], [0.0, 1.0, 0.0])
+    ///     .unwrap()
+    ///     .with_projection(Projection::Perspective { fovy_deg: 60.0 }, 1e-4, 0.01)
+    ///     .unwrap();
+    /// let milli = Mat4::from_f32([
+    ///     [1e-3, 0.0, 0.0, 0.0],
+    ///     [0.0, 1e-3, 0.0, 0.0],
+    ///     [0.0, 0.0, 1e-3, 0.0],
+    ///     [0.0, 0.0, 0.0, 1.0],
+    /// ])
+    /// .unwrap();
+    /// assert!(!tiny.resolves(&milli, &Bounds::UNIT, 240));
+    /// ```
+    pub fn resolves(&self, model: &Mat4, bounds: &Bounds, height: u32) -> bool {
+        self.resolves_modelview(&self.view.mul(model), bounds, height)
+    }
+
+    /// [`Camera::resolves`] for the model-view matrix `mv`.
+    ///
+    /// Ranges: each product of an `I8F24` entry with a box coordinate is
+    /// below 2⁶², 2³⁸ once shifted, so the sums are far inside `i64`; `R`
+    /// is below 2³³, the depths below 2⁴⁰, `e` below 2⁴²; `height·sy` is
+    /// below 2³²·2³¹, its ceiling over 2²⁰ below 2⁴³, and the product with
+    /// `e` saturates (refused: it then exceeds either side). Out of line:
+    /// once a draw, one copy for every configuration.
+    #[inline(never)]
+    pub(crate) fn resolves_modelview(&self, mv: &Mat4, b: &Bounds, height: u32) -> bool {
+        // The box's largest coordinate on each axis, object units, and
+        // over all axes (`r`); the scene's scale `d`: at least the largest
+        // eye coordinate the box reaches (at most that plus the box's own
+        // offset's share), and at least `near`.
+        let o: [u64; 3] =
+            core::array::from_fn(|c| b.offset[c].unsigned_abs() as u64 + b.scale[c] as u64);
+        let r = o[0].max(o[1]).max(o[2]);
+        let mut d = self.lens.near as u64;
+        for row in &mv.m[..3] {
+            let mut reach = row[3].unsigned_abs() as u64;
+            for c in 0..3 {
+                reach += (row[c].unsigned_abs() as u64 * o[c]) >> COORD_FRAC;
+            }
+            d = d.max(reach);
+        }
+        let e = (4 << COORD_FRAC) + 4 * r + d;
+        let l = (height.max(1) as u64 * self.lens.sy.unsigned_abs() as u64).div_ceil(1 << 20);
+        let lhs = l.saturating_mul(e);
+        // Perspective: 2⁻²⁴·(h/2)·(sy/2²⁴)·e/d ≤ 2⁻⁹;
+        // orthographic: 2⁻²⁴·(h/2)·(sy/2²⁴)·e/2²⁴ ≤ 2⁻⁹.
+        let rhs = if self.lens.perspective {
+            d << 20
+        } else {
+            1 << 44
+        };
+        lhs <= rhs
+    }
 }
 
 /// `√x` in `f64` to the last bit or so: Newton's iteration from a guess
@@ -498,4 +585,45 @@ impl ProjectionCoeffs {
 #[inline(always)]
 fn coeff_mul(c: i32, v: i32) -> i64 {
     (mul_i32(c, v) + (1 << (COORD_FRAC - 1))) >> COORD_FRAC
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The extremes of every operand (entries of `i32::MIN`, boxes at the
+    /// edge of both formats, the tallest height, both projections) run
+    /// without overflow in debug builds, and refuse.
+    #[test]
+    fn resolves_at_the_formats_edges() {
+        let edge = Bounds {
+            offset: [i32::MIN, i32::MAX, i32::MIN],
+            scale: [u32::MAX; 3],
+        };
+        let wild = Mat4 {
+            m: [
+                [i32::MIN; 4],
+                [i32::MAX; 4],
+                [i32::MIN, i32::MAX, i32::MIN, i32::MAX],
+                [0; 4],
+            ],
+        };
+        let eye = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+        let tiny_ortho = eye
+            .with_projection(Projection::Orthographic { height: 0.016 }, 1e-7, 127.0)
+            .unwrap();
+        let narrow = eye
+            .with_projection(Projection::Perspective { fovy_deg: 1.0 }, 1e-7, 127.0)
+            .unwrap();
+        for cam in [eye, tiny_ortho, narrow] {
+            for h in [0, 1, 240, u32::MAX] {
+                for (m, b) in [(wild, edge), (Mat4::IDENTITY, edge), (wild, Bounds::UNIT)] {
+                    let _ = cam.resolves_modelview(&m, &b, h);
+                }
+                assert!(!cam.resolves_modelview(&wild, &edge, u32::MAX));
+            }
+        }
+        // The standard sphere's scene and its tallest target resolve.
+        assert!(eye.resolves(&Mat4::IDENTITY, &Bounds::UNIT, 4096));
+    }
 }

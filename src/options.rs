@@ -202,6 +202,11 @@ pub enum RenderError<E> {
     /// The target is wider or taller than 2²⁰ pixels, or its bounding box
     /// reaches past `i32::MAX` (its last column or row is not a `Point`).
     TargetTooLarge,
+    /// The scene is too small for the world's absolute formats on this
+    /// target: a step of 2⁻²⁴ world units would move its pixels by more
+    /// than 1/512 px ([`Camera::resolves`](crate::camera::Camera::resolves)).
+    /// Express it in smaller units (larger numbers).
+    SceneTooSmall,
     /// The target reported an error.
     Target(E),
 }
@@ -218,6 +223,7 @@ impl<E> RenderError<E> {
             RenderError::DepthTooSmall => RenderError::DepthTooSmall,
             RenderError::BandTooSmall => RenderError::BandTooSmall,
             RenderError::TargetTooLarge => RenderError::TargetTooLarge,
+            RenderError::SceneTooSmall => RenderError::SceneTooSmall,
             RenderError::Target(e) => return Err(e),
         })
     }
@@ -252,6 +258,9 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
             RenderError::TargetTooLarge => {
                 f.write_str("target larger than 2^20 pixels a side, or ending past i32::MAX")
             }
+            RenderError::SceneTooSmall => f.write_str(
+                "scene too small for the world's 2^-24 steps on this target: express it in smaller units",
+            ),
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }
     }

@@ -107,6 +107,12 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             .camera
             .projection_for(w, h)
             .map_err(RenderError::Camera)?;
+        if !self
+            .camera
+            .resolves_modelview(&self.modelview, &mesh.bounds, h)
+        {
+            return Err(RenderError::SceneTooSmall);
+        }
         let (origin, rect) = rect_of((w, h));
         Ok(Some(Frame {
             stage: Stage::new(&self.lighting, mesh, &self.modelview, &proj, w, h),

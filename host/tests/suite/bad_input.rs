@@ -1051,22 +1051,45 @@ fn targets_ending_past_i32_max() {
     }
 }
 
-/// The draw counts saturate: a full-screen quad on the largest target,
-/// 2²⁰ × 2²⁰ pixels, sends 2⁴⁰ pixels, and `pixels` stays at `u32::MAX`
-/// (found by an audit: the `u32` sum overflowed).
+/// The draw counts saturate: a full-screen quad on a 2¹⁶ × 2¹⁶ target
+/// sends 2³² pixels, and `pixels` stays at `u32::MAX` (found by an audit:
+/// the `u32` sum overflowed). The quad is 128 units wide, seen from 16
+/// under a 120° field of view: a unit quad from 1 would be refused on so
+/// tall a target ([`RenderError::SceneTooSmall`]), and is.
 #[test]
 fn draw_counts_saturate() {
     let (p, b, i) = full_screen_quad();
     let mesh = Mesh::new(&p, b, &i);
-    let side = MAX_TARGET_SIDE;
+    let side = 1 << 16;
     let mut t = Discard {
         bb: Rectangle::new(Point::zero(), Size::new(side, side)),
         runs: 0,
     };
     let mut cache = [CachedVertex::default(); 4];
     let sun = facing_sun();
-    let r = facing_renderer(&sun).with_shading(Flat);
-    let stats = mesh.shaded(&r).with_cache(&mut cache).draw(&mut t).unwrap();
+    let unit = facing_renderer(&sun).with_shading(Flat);
+    let e = mesh.shaded(&unit).with_cache(&mut cache).draw(&mut t);
+    assert_eq!(e, Err(RenderError::SceneTooSmall));
+    assert_eq!(t.runs, 0);
+    let camera = Camera::look_at([0.0, 0.0, 16.0], [0.0; 3], [0.0, 1.0, 0.0])
+        .and_then(|c| c.with_projection(Projection::Perspective { fovy_deg: 120.0 }, 1.0, 100.0))
+        .unwrap();
+    let m = Material::new();
+    let r = Renderer::new(&camera, &m, &sun).with_shading(Flat);
+    let stats = mesh
+        .shaded(&r)
+        .with_model(
+            Mat4::from_f32([
+                [32.0, 0.0, 0.0, 0.0],
+                [0.0, 32.0, 0.0, 0.0],
+                [0.0, 0.0, 32.0, 0.0],
+                [0.0, 0.0, 0.0, 1.0],
+            ])
+            .unwrap(),
+        )
+        .with_cache(&mut cache)
+        .draw(&mut t)
+        .unwrap();
     assert_eq!(stats.pixels, u32::MAX);
     assert!(t.runs >= side as u64, "a run or two a row");
 }

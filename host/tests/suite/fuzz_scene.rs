@@ -608,8 +608,8 @@ pub struct Report {
 
 /// The error the renderer must give, by the documented order of checks
 /// (`Shaded::draw`: mesh, normals for Gouraud and Phong shading, cache,
-/// target size, depth, then, for a target that is not empty, camera; an
-/// empty target draws nothing).
+/// target size, depth, then, for a target that is not empty, camera and
+/// the scene's scale; an empty target draws nothing).
 pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     let mesh = Mesh {
         positions: &s.positions,
@@ -653,6 +653,9 @@ pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     }
     if let Err(e) = s.camera.projection_for(s.width, s.height) {
         return Some(RenderError::Camera(e));
+    }
+    if !s.camera.resolves(&s.model, &s.bounds, s.height) {
+        return Some(RenderError::SceneTooSmall);
     }
     None
 }

@@ -18,3 +18,4 @@ mod reference;
 mod scene_file;
 mod stiff_cases;
 mod watertight;
+mod world_scale;
