@@ -381,23 +381,29 @@ impl Camera {
 
     /// Whether the world's absolute formats resolve a mesh in `bounds`
     /// placed by `model` and seen through this camera on a target `height`
-    /// pixels tall: whether the steps of the `I8F24` positions and
-    /// matrices (2⁻²⁴ world units) move its pixels by at most about
-    /// 1/512 px. A draw where they do not is refused
-    /// ([`RenderError::SceneTooSmall`](crate::render::RenderError::SceneTooSmall)):
-    /// past that the frame drifts from the exact one (measured: more than
-    /// 1 % of the pixels 1 LSB off, or coverage 0.1 % wrong, from about
-    /// 1/200 px). Express such a scene in smaller units (larger numbers).
+    /// pixels tall, by an estimate of how far the steps of the `I8F24`
+    /// positions and matrices (2⁻²⁴ world units) and of the vertex stage
+    /// move its pixels. A draw where they would move them by more than
+    /// about 1/512 px is refused
+    /// ([`RenderError::SceneTooSmall`](crate::render::RenderError::SceneTooSmall)).
+    /// Express such a scene in smaller units (larger numbers), nearer the
+    /// world's origin.
     ///
-    /// The estimate: the quantised view, model and box place a point within
-    /// about `2⁻²⁴·(4 + 4R + D)` world units of where they should, `R` the
-    /// largest coordinate of the box in object units and `D` the scene's
-    /// scale in eye space, the largest coordinate the box reaches there
-    /// (its distance, or its size where it reaches the eye; at least
-    /// `near`); seen at that distance, that is that times
-    /// `height·cot(fovy/2)/(2D)` pixels (orthographic: `height/view
-    /// height`). `tests/suite/world_scale.rs` holds the scenes it accepts
-    /// to the accuracy bound, from 10⁻⁶ to 1 in scale.
+    /// It is an estimate, not a proof. The two terms: the roundings of the
+    /// view, the model and the box place a point within about
+    /// `2⁻²⁴·(4 + 4R + D + T)` world units of where they should (`R` the
+    /// box's largest object coordinate, `D` the largest eye coordinate the
+    /// box reaches, at least `near`, `T` the largest translation of the
+    /// view and the model), seen at distance `D`; and the vertex rows,
+    /// scaled to `D`, hold `2⁻²⁶·D`, seen at the box's least depth (at
+    /// least `near`). A pixel of the height spans `2·z·tan(fovy/2)/height`
+    /// world units at distance `z` (orthographic: `view height/height`).
+    /// What it bounds is drift: at 1/512 px an edge pixel in a few hundred
+    /// may change its coverage, which is one pixel of a frame of a few
+    /// hundred; and near its threshold it refuses some scenes that would
+    /// draw within the accuracy bound. `tests/suite/world_scale.rs` draws
+    /// a sphere from 10⁻⁶ to 1 in scale, 0 to 110 units from the origin,
+    /// and rods reaching the eye: each is refused or drawn within 1 LSB.
     ///
     /// ```
     /// use fixshade::camera::{Camera, Projection};
@@ -420,19 +426,38 @@ impl Camera {
     /// assert!(!tiny.resolves(&milli, &Bounds::UNIT, 240));
     /// ```
     pub fn resolves(&self, model: &Mat4, bounds: &Bounds, height: u32) -> bool {
-        self.resolves_modelview(&self.view.mul(model), bounds, height)
+        let world = self.world_reach(model);
+        self.resolves_modelview(&self.view.mul(model), world, bounds, height)
     }
 
-    /// [`Camera::resolves`] for the model-view matrix `mv`.
+    /// The largest translation of the view and `model` (raw `I8F24`): the
+    /// eye's and the object's distance from the world's origin, which the
+    /// model-view product cancels but the roundings of both matrices scale
+    /// with.
+    pub(crate) fn world_reach(&self, model: &Mat4) -> u64 {
+        let t = |m: &Mat4| (0..3).map(|r| m.m[r][3].unsigned_abs()).max().unwrap_or(0);
+        t(&self.view).max(t(model)) as u64
+    }
+
+    /// [`Camera::resolves`] for the model-view matrix `mv` and the
+    /// translations' reach `world` ([`Camera::world_reach`], below 2³¹).
     ///
-    /// Ranges: each product of an `I8F24` entry with a box coordinate is
-    /// below 2⁶², 2³⁸ once shifted, so the sums are far inside `i64`; `R`
-    /// is below 2³³, the depths below 2⁴⁰, `e` below 2⁴²; `height·sy` is
-    /// below 2³²·2³¹, its ceiling over 2²⁰ below 2⁴³, and the product with
-    /// `e` saturates (refused: it then exceeds either side). Out of line:
-    /// once a draw, one copy for every configuration.
+    /// Ranges (raw `I8F24`): a box coordinate `o` is below 1.5·2³², its
+    /// product with an entry (below 2³¹) below 1.5·2⁶³ in `u64`, below 2⁴⁰
+    /// once shifted, so `d` is below 2⁴²; the signed depth products are
+    /// below 2⁶³ (entry and offset below 2³¹ each), below 2³⁹ shifted, and
+    /// the least depth below 2⁴¹; `e` is below 2⁴⁴; `height·sy` is below
+    /// 2³²·2³¹, `l` below 2⁴³, and its products saturate (refused: they then
+    /// exceed either side, `d·2²⁰` and the least depth's `·2²²` both below
+    /// 2⁶⁴). Out of line: once a draw, one copy for every configuration.
     #[inline(never)]
-    pub(crate) fn resolves_modelview(&self, mv: &Mat4, b: &Bounds, height: u32) -> bool {
+    pub(crate) fn resolves_modelview(
+        &self,
+        mv: &Mat4,
+        world: u64,
+        b: &Bounds,
+        height: u32,
+    ) -> bool {
         // The box's largest coordinate on each axis, object units, and
         // over all axes (`r`); the scene's scale `d`: at least the largest
         // eye coordinate the box reaches (at most that plus the box's own
@@ -440,7 +465,8 @@ impl Camera {
         let o: [u64; 3] =
             core::array::from_fn(|c| b.offset[c].unsigned_abs() as u64 + b.scale[c] as u64);
         let r = o[0].max(o[1]).max(o[2]);
-        let mut d = self.lens.near as u64;
+        let near = self.lens.near as u64;
+        let mut d = near;
         for row in &mv.m[..3] {
             let mut reach = row[3].unsigned_abs() as u64;
             for c in 0..3 {
@@ -448,17 +474,25 @@ impl Camera {
             }
             d = d.max(reach);
         }
-        let e = (4 << COORD_FRAC) + 4 * r + d;
+        // The box's least depth −z (its eye z at most `centre + reach`),
+        // not nearer than the near plane.
+        let z = &mv.m[2];
+        let (mut centre, mut reach) = (z[3] as i64, 0i64);
+        for ((&m, &off), &scale) in z.iter().zip(&b.offset).zip(&b.scale) {
+            centre += (m as i64 * off as i64) >> COORD_FRAC;
+            reach += ((m.unsigned_abs() as i64 * scale as i64) >> COORD_FRAC) + 1;
+        }
+        let nearest = (-(centre + reach)).max(near as i64) as u64;
+        let e = (4 << COORD_FRAC) + 4 * r + d + world;
         let l = (height.max(1) as u64 * self.lens.sy.unsigned_abs() as u64).div_ceil(1 << 20);
-        let lhs = l.saturating_mul(e);
-        // Perspective: 2⁻²⁴·(h/2)·(sy/2²⁴)·e/d ≤ 2⁻⁹;
-        // orthographic: 2⁻²⁴·(h/2)·(sy/2²⁴)·e/2²⁴ ≤ 2⁻⁹.
-        let rhs = if self.lens.perspective {
-            d << 20
-        } else {
-            1 << 44
-        };
-        lhs <= rhs
+        if !self.lens.perspective {
+            // 2⁻²⁴·(h/2)·(sy/2²⁴)·e/2²⁴ ≤ 2⁻⁹.
+            return l.saturating_mul(e) <= 1 << 44;
+        }
+        // The steps at the scene's scale: 2⁻²⁴·(h/2)·(sy/2²⁴)·e/d ≤ 2⁻⁹;
+        // and the vertex rows' precision, 2⁻²⁶ of the box's reach, at its
+        // least depth: (h/2)·(sy/2²⁴)·2⁻²⁶·d/nearest ≤ 2⁻⁹.
+        l.saturating_mul(e) <= d << 20 && l.saturating_mul(d) <= nearest << 22
     }
 }
 
@@ -618,9 +652,10 @@ mod tests {
         for cam in [eye, tiny_ortho, narrow] {
             for h in [0, 1, 240, u32::MAX] {
                 for (m, b) in [(wild, edge), (Mat4::IDENTITY, edge), (wild, Bounds::UNIT)] {
-                    let _ = cam.resolves_modelview(&m, &b, h);
+                    let _ = cam.resolves_modelview(&m, 0, &b, h);
+                    let _ = cam.resolves_modelview(&m, u32::MAX as u64, &b, h);
                 }
-                assert!(!cam.resolves_modelview(&wild, &edge, u32::MAX));
+                assert!(!cam.resolves_modelview(&wild, 1 << 31, &edge, u32::MAX));
             }
         }
         // The standard sphere's scene and its tallest target resolve.

@@ -203,9 +203,10 @@ pub enum RenderError<E> {
     /// reaches past `i32::MAX` (its last column or row is not a `Point`).
     TargetTooLarge,
     /// The scene is too small for the world's absolute formats on this
-    /// target: a step of 2⁻²⁴ world units would move its pixels by more
-    /// than 1/512 px ([`Camera::resolves`](crate::camera::Camera::resolves)).
-    /// Express it in smaller units (larger numbers).
+    /// target: by [`Camera::resolves`](crate::camera::Camera::resolves)'s
+    /// estimate, the steps of 2⁻²⁴ world units would move its pixels by
+    /// more than about 1/512 px. Express it in smaller units (larger
+    /// numbers), nearer the world's origin.
     SceneTooSmall,
     /// The target reported an error.
     Target(E),

@@ -65,6 +65,8 @@ pub struct Prepared<'c, S: Specular, V: Viewer, L: LightSet> {
     // projection's set-up folds away.
     camera: &'c Camera,
     modelview: Mat4,
+    /// [`Camera::world_reach`] of the model.
+    world: u64,
     options: RenderOptions,
 }
 
@@ -82,6 +84,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             lighting: Lighting::new(material, global_ambient, lights, &camera.view),
             camera,
             modelview: camera.view.mul(model),
+            world: camera.world_reach(model),
             options,
         }
     }
@@ -109,7 +112,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             .map_err(RenderError::Camera)?;
         if !self
             .camera
-            .resolves_modelview(&self.modelview, &mesh.bounds, h)
+            .resolves_modelview(&self.modelview, self.world, &mesh.bounds, h)
         {
             return Err(RenderError::SceneTooSmall);
         }

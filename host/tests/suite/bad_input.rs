@@ -1053,8 +1053,8 @@ fn targets_ending_past_i32_max() {
 
 /// The draw counts saturate: a full-screen quad on a 2¹⁶ × 2¹⁶ target
 /// sends 2³² pixels, and `pixels` stays at `u32::MAX` (found by an audit:
-/// the `u32` sum overflowed). The quad is 128 units wide, seen from 16
-/// under a 120° field of view: a unit quad from 1 would be refused on so
+/// the `u32` sum overflowed). The quad is 124 units wide, seen from 16
+/// under a 150° field of view: a unit quad from 1 would be refused on so
 /// tall a target ([`RenderError::SceneTooSmall`]), and is.
 #[test]
 fn draw_counts_saturate() {
@@ -1072,7 +1072,7 @@ fn draw_counts_saturate() {
     assert_eq!(e, Err(RenderError::SceneTooSmall));
     assert_eq!(t.runs, 0);
     let camera = Camera::look_at([0.0, 0.0, 16.0], [0.0; 3], [0.0, 1.0, 0.0])
-        .and_then(|c| c.with_projection(Projection::Perspective { fovy_deg: 120.0 }, 1.0, 100.0))
+        .and_then(|c| c.with_projection(Projection::Perspective { fovy_deg: 150.0 }, 1.0, 100.0))
         .unwrap();
     let m = Material::new();
     let r = Renderer::new(&camera, &m, &sun).with_shading(Flat);
@@ -1080,9 +1080,9 @@ fn draw_counts_saturate() {
         .shaded(&r)
         .with_model(
             Mat4::from_f32([
-                [32.0, 0.0, 0.0, 0.0],
-                [0.0, 32.0, 0.0, 0.0],
-                [0.0, 0.0, 32.0, 0.0],
+                [31.0, 0.0, 0.0, 0.0],
+                [0.0, 31.0, 0.0, 0.0],
+                [0.0, 0.0, 0.25, 0.0],
                 [0.0, 0.0, 0.0, 1.0],
             ])
             .unwrap(),

@@ -606,13 +606,15 @@ fn sub_pixel_slivers_between_centres_draw_nothing() {
 }
 
 /// Triangles far larger than the screen: a quad 10⁻⁴ in front of the near
-/// plane (vertices near ±10⁶ pixels, clamped by no format), and a floor
-/// under a 179.9° field of view. Each covers what the reference covers.
+/// plane (vertices near ±5·10⁴ pixels, clamped by no format), and a floor
+/// under a 179.9° field of view (±10⁶ pixels). Each covers what the
+/// reference covers. The quad ten times closer (±5·10⁵ pixels, near 10⁻⁴)
+/// is refused: the vertex rows, scaled to the quad's reach of 1, are too
+/// coarse 10⁻⁴ from the eye (`Camera::resolves`).
 #[test]
 fn triangles_a_million_pixels_wide() {
-    // The quad: corners at x_e = ±1, z_e = −(near + 10⁻⁵), 60° at 64 px:
-    // x_w ≈ 32 + 32·1.73/1.1·10⁻⁴ ≈ 5·10⁵ px.
-    let near = 1e-4;
+    // The quad: corners at x_e = ±1, z_e = −(near + near/10), 60° at 64 px:
+    // x_w ≈ 32 + 32·1.73/1.1·10⁻³ ≈ 5·10⁴ px.
     let z = 0.0;
     let mesh = MeshDesc {
         positions: vec![
@@ -624,20 +626,33 @@ fn triangles_a_million_pixels_wide() {
         normals: Some(vec![normalized([0.3, 0.2, 1.0]); 4]),
         indices: vec![[0, 1, 2], [0, 2, 3]],
     };
-    let eye = [0.0, 0.0, near + 1e-5];
-    for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
-        let mut s = SceneDesc::new(64, 48, perspective(eye, 60.0, near, 10.0), mesh.clone());
-        s.shading = shading;
-        s.lights = vec![LightDesc::Point {
-            position: [0.1, 0.2, 0.5],
-            diffuse: [0.9; 3],
-            specular: [0.5; 3],
-            attenuation: [1.0, 0.5, 0.0],
-        }];
-        s.material = material(0.8, 0.4, 8.0);
-        s.viewer = Viewer::Local;
-        let e = check(&format!("quad at the near plane, {shading:?}"), &s);
-        assert_eq!(e.covered_both, 64 * 48, "the quad covers the screen");
+    for near in [1e-3, 1e-4] {
+        let eye = [0.0, 0.0, near * 1.1];
+        for shading in [Shading::Flat, Shading::Gouraud, Shading::Phong] {
+            let mut s = SceneDesc::new(64, 48, perspective(eye, 60.0, near, 10.0), mesh.clone());
+            s.shading = shading;
+            s.lights = vec![LightDesc::Point {
+                position: [0.1, 0.2, 0.5],
+                diffuse: [0.9; 3],
+                specular: [0.5; 3],
+                attenuation: [1.0, 0.5, 0.0],
+            }];
+            s.material = material(0.8, 0.4, 8.0);
+            s.viewer = Viewer::Local;
+            let name = format!("quad {near} before the near plane, {shading:?}");
+            if near < 1e-3 {
+                let k = KernelScene::new(&s).expect("scene");
+                let e = k.render_frame().err();
+                assert_eq!(
+                    e,
+                    Some(fixshade::render::RenderError::SceneTooSmall),
+                    "{name}"
+                );
+                continue;
+            }
+            let e = check(&name, &s);
+            assert_eq!(e.covered_both, 64 * 48, "the quad covers the screen");
+        }
     }
     // A floor under a very wide field of view: far corners at ±10⁶ px.
     for fov in [170.0, 179.0, 179.9] {

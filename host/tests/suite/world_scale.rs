@@ -11,7 +11,6 @@
 //!
 //! `cargo test --test suite world_scale -- --nocapture` prints each case.
 
-use crate::common::assert_within_bound;
 use fixshade::render::RenderError;
 use fixshade_host::error_measure::compare;
 use fixshade_host::generate;
@@ -38,7 +37,17 @@ fn drawn(name: &str, s: &SceneDesc) -> bool {
             let e = compare(&frame.pixels, &frame.covered, &r);
             println!("{name}: {e}");
             assert!(frame.stats.pixels > 0, "{name}: nothing drawn");
-            assert_within_bound(name, &e);
+            assert!(e.max_error.iter().all(|&m| m <= 1), "{name}: {e}");
+            // What the check bounds is drift, about 1/512 px: an edge pixel
+            // in a few hundred may change its coverage, one of a small
+            // frame's, and 1 % of its pixels a small frame's handful. The
+            // 0.1 % and the 99 % hold on frames of thousands of pixels.
+            let mismatched = e.coverage_mismatch_share * e.covered_both as f64;
+            assert!(
+                e.coverage_mismatch_share <= 0.001 || mismatched <= 1.5,
+                "{name}: {e}"
+            );
+            assert!(e.compared < 2000 || e.exact_share >= 0.99, "{name}: {e}");
             true
         }
         Err(e) => {
@@ -50,16 +59,23 @@ fn drawn(name: &str, s: &SceneDesc) -> bool {
 }
 
 fn scaled(w: u32, h: u32, s: f64, by_model: bool, ortho: bool) -> SceneDesc {
+    shifted(w, h, s, by_model, ortho, 0.0)
+}
+
+/// [`scaled`] with the scene, camera and all, moved `t` along z: the
+/// matrices' roundings grow with the distance from the world's origin.
+fn shifted(w: u32, h: u32, s: f64, by_model: bool, ortho: bool, t: f64) -> SceneDesc {
     let mut sc = sphere_scene(w, h, 48, 24);
     let (radius, m) = if by_model { (1.0, s) } else { (s, 1.0) };
     sc.mesh = generate::sphere(48, 24, radius);
     sc.model = [
         [m, 0.0, 0.0, 0.17 * s],
         [0.0, m, 0.0, -0.11 * s],
-        [0.0, 0.0, m, 0.05 * s],
+        [0.0, 0.0, m, 0.05 * s + t],
         [0.0, 0.0, 0.0, 1.0],
     ];
-    sc.camera.eye = [0.013 * s, 0.021 * s, 3.0 * s];
+    sc.camera.eye = [0.013 * s, 0.021 * s, 3.0 * s + t];
+    sc.camera.target = [0.0, 0.0, t];
     sc.camera.near = 0.1 * s;
     sc.camera.far = 10.0 * s;
     if ortho {
@@ -72,29 +88,31 @@ fn scaled(w: u32, h: u32, s: f64, by_model: bool, ortho: bool) -> SceneDesc {
 fn every_scale_is_drawn_within_the_bound_or_refused() {
     for (w, h) in [(64, 48), (320, 240), (1024, 768)] {
         for ortho in [false, true] {
-            let mut smallest_drawn = f64::INFINITY;
-            for k in 0..=24 {
-                let s = 10f64.powf(-k as f64 / 4.0);
-                for by_model in [true, false] {
-                    let name = format!(
-                        "{w}x{h}, {}, scale {s:.1e} by the {}",
-                        if ortho { "orthographic" } else { "perspective" },
-                        if by_model { "model" } else { "mesh" }
-                    );
-                    if drawn(&name, &scaled(w, h, s, by_model, ortho)) {
-                        smallest_drawn = smallest_drawn.min(s);
-                    } else {
-                        // Refused scenes are the small ones: every larger
-                        // scale of the same kind was drawn.
-                        assert!(s < 0.1, "{name}: refused");
+            for t in [0.0, 30.0, 110.0] {
+                let mut smallest_drawn = f64::INFINITY;
+                for k in 0..=24 {
+                    let s = 10f64.powf(-k as f64 / 4.0);
+                    for by_model in [true, false] {
+                        let name = format!(
+                            "{w}x{h}, {}, scale {s:.1e} by the {}, {t} from the origin",
+                            if ortho { "orthographic" } else { "perspective" },
+                            if by_model { "model" } else { "mesh" }
+                        );
+                        if drawn(&name, &shifted(w, h, s, by_model, ortho, t)) {
+                            smallest_drawn = smallest_drawn.min(s);
+                        } else if t == 0.0 {
+                            // At the origin, refused scenes are the small
+                            // ones: every larger scale of the kind was drawn.
+                            assert!(s < 0.1, "{name}: refused");
+                        }
                     }
                 }
+                println!("{w}x{h} ortho {ortho} at {t}: drawn down to {smallest_drawn:.1e}");
+                // At the origin, down to where the formats hold the bound:
+                // a sphere of radius 1/10 fills a quarter of the height.
+                let reach = if t == 0.0 { 0.1 } else { 1.0 };
+                assert!(smallest_drawn <= reach, "{w}x{h} at {t}: {smallest_drawn}");
             }
-            // Down to where the formats hold the bound: a sphere of radius
-            // 1/10 fills a quarter of the height (perspective: 2⁻⁹ px
-            // a step is reached near 1/20 at 1024 × 768).
-            println!("{w}x{h} ortho {ortho}: drawn down to scale {smallest_drawn:.1e}");
-            assert!(smallest_drawn <= 0.1, "{w}x{h}: {smallest_drawn}");
         }
     }
 }
@@ -141,4 +159,38 @@ fn scenes_past_the_range_are_refused() {
     let tiny = scaled(64, 48, 1e-6, true, false);
     let k = KernelScene::new(&tiny).expect("representable");
     assert_eq!(k.render_frame().err(), Some(RenderError::SceneTooSmall));
+}
+
+/// A rod 100 units long reaching from far to close before the eye: the
+/// vertex rows, scaled to its reach, are coarse at its near end (found by a
+/// review: accepted and drawn with 1 % of its coverage wrong). Refused, or
+/// within the bound.
+#[test]
+fn long_objects_reaching_the_eye_are_refused_or_within_the_bound() {
+    let rod = |w: u32, h: u32, a: f64, len: f64, z0: f64, eye: [f64; 3], near: f64| {
+        let mut sc = sphere_scene(w, h, 8, 4);
+        sc.mesh = generate::cube(1.0);
+        for p in &mut sc.mesh.positions {
+            *p = [p[0] * a, p[1] * a, p[2] * len];
+        }
+        sc.mesh.normals = None;
+        sc.model[2][3] = -(z0 + len / 2.0);
+        sc.camera.eye = eye;
+        sc.camera.target = [0.0, 0.0, -1.0];
+        sc.camera.near = near;
+        sc.camera.far = 127.0;
+        sc
+    };
+    let mut drawn_any = false;
+    for (w, h, a, len, z0, eye, near) in [
+        (320, 240, 0.001, 100.0, 0.002, [3e-4, 2e-4, 0.0], 0.001),
+        (1024, 768, 0.01, 100.0, 0.02, [0.003, 0.002, 0.0], 0.01),
+        (1024, 768, 0.001, 1.0, 0.002, [1e-4, 7e-5, 0.0], 0.001),
+        (320, 240, 0.1, 100.0, 0.2, [0.03, 0.02, 0.0], 0.1),
+        (320, 240, 0.5, 20.0, 1.0, [0.13, 0.07, 0.0], 0.1),
+    ] {
+        let name = format!("{w}x{h}, rod {a} × {len} from {z0}");
+        drawn_any |= drawn(&name, &rod(w, h, a, len, z0, eye, near));
+    }
+    assert!(drawn_any, "a rod of ordinary size is drawn");
 }
