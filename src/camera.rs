@@ -400,8 +400,11 @@ impl Camera {
     /// world units at distance `z` (orthographic: `view height/height`).
     /// What it bounds is drift: at 1/512 px an edge pixel in a few hundred
     /// may change its coverage, which is one pixel of a frame of a few
-    /// hundred; and near its threshold it refuses some scenes that would
-    /// draw within the accuracy bound. `tests/suite/world_scale.rs` draws
+    /// hundred; near its threshold it refuses some scenes that would draw
+    /// within the accuracy bound; and it misses small objects near the edge
+    /// of a wide view (120° to 150°) far from the world's origin, where a
+    /// pixel at the box's depth is smaller than at its sideways reach
+    /// (docs/DEPARTURES.md). `tests/suite/world_scale.rs` draws
     /// a sphere from 10⁻⁶ to 1 in scale, 0 to 110 units from the origin,
     /// and rods reaching the eye: each is refused or drawn within 1 LSB.
     ///
