@@ -309,7 +309,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             frame.stage.project_all(cache);
         }
         let runs = Runs::new(mesh.indices.len());
-        let mut memo = Memo::new();
+        let mut recent = RecentVertices::new();
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
         // Bit j: triangle j of the run may draw (j ≥ 32: always visited).
         let mut visible = [0u32; CHUNKS];
@@ -318,7 +318,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             let v = if X::CACHED {
                 idx.map(|i| cache.get(i).copied().unwrap_or_default())
             } else {
-                memo.corners(&frame, idx)
+                recent.corners(&frame, idx)
             };
             if let Some((lo, hi)) = visible_rows(&frame, v, cull) {
                 let (r, j) = (t / runs.per, t % runs.per);
@@ -337,7 +337,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
             bounds: &bounds,
             visible: &visible,
         };
-        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, &mut memo, bands, depth, &mut stats)?;
+        job.run::<M, X, _, _, _, _, _>(&mut frame, cache, &mut recent, bands, depth, &mut stats)?;
         Ok(stats)
     }
 }
@@ -362,7 +362,7 @@ impl Job<'_, '_> {
         &self,
         frame: &mut Frame<'_, '_, S, V, L>,
         cache: &mut [CachedVertex],
-        memo: &mut Memo,
+        recent: &mut RecentVertices,
         bands: &mut Bands<T>,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -433,7 +433,7 @@ impl Job<'_, '_> {
                             frame, cache, idx, idx, &mut out, depth, stats,
                         )
                     } else {
-                        let mut three = memo.corners(frame, idx);
+                        let mut three = recent.corners(frame, idx);
                         let res = band_triangle::<M, _, _, _, _>(
                             frame,
                             &mut three,
@@ -443,7 +443,7 @@ impl Job<'_, '_> {
                             depth,
                             stats,
                         );
-                        memo.keep(idx, &three);
+                        recent.keep(idx, &three);
                         res
                     };
                     let Ok(()) = res;
@@ -480,7 +480,7 @@ impl Runs {
     }
 }
 
-/// Entries of [`Memo`]: 64 vertices, 1 280 bytes of stack.
+/// Entries of [`RecentVertices`]: 64 vertices, 1 280 bytes of stack.
 const MEMO: usize = 64;
 
 /// The recently projected (and lit) vertices of a draw without a vertex
@@ -490,14 +490,14 @@ const MEMO: usize = 64;
 /// instead of being projected (and lit) again. An entry holds what
 /// [`Stage::project`](crate::vertex::Stage::project) gives and what
 /// lighting adds to it, so the pixels are those of projecting each time.
-struct Memo {
+struct RecentVertices {
     tag: [u32; MEMO],
     v: [CachedVertex; MEMO],
 }
 
-impl Memo {
-    fn new() -> Memo {
-        Memo {
+impl RecentVertices {
+    fn new() -> RecentVertices {
+        RecentVertices {
             tag: [u32::MAX; MEMO],
             v: [CachedVertex::new(); MEMO],
         }

@@ -404,7 +404,7 @@ impl Camera {
     /// within the accuracy bound; and it misses small objects near the edge
     /// of a wide view (120° to 150°) far from the world's origin, where a
     /// pixel at the box's depth is smaller than at its sideways reach
-    /// (docs/DEPARTURES.md). `tests/suite/world_scale.rs` draws
+    /// (docs/DEPARTURES.md). `host/tests/suite/world_scale.rs` draws
     /// a sphere from 10⁻⁶ to 1 in scale, 0 to 110 units from the origin,
     /// and rods reaching the eye: each is refused or drawn within 1 LSB.
     ///

@@ -13,8 +13,8 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::Mesh;
+use crate::output::{normals_for, Output};
 use crate::render::{DrawStats, Prepared, RenderError, RenderOptions, ShadingMode};
-use crate::renderer::{normals_for, Output};
 use crate::vector::Mat4;
 
 /// Draws `mesh` under `lights` with shading mode `M` and viewer `V` into

@@ -43,14 +43,14 @@
 //! | mesh in flash: `i16` positions in a box, packed normals, `u16` indices | [`mesh`] |
 //! | camera, projection | [`camera`] |
 //! | per draw: model-view, projection, window mapping and the mesh's box folded into four rows | `vertex` |
-//! | per vertex: window position, depth; lighting | `vertex`, [`illumination`], [`light`], [`material`], `specular_table`, `normalize` |
+//! | per vertex: window position, depth; lighting | `vertex`, [`illumination`], `light_term`, [`light`], [`material`], `specular_table`, `normalize` |
 //! | per triangle: culling, cheap rejections, facing | `triangle` |
 //! | the rare path: near and guard-band clipping, big targets | `clip` |
 //! | the shading mode's attributes at the corners | `shade` |
-//! | set-up: edges and attribute planes | `setup` |
-//! | coverage: the exact edge walk, rows in tables of up to 32 | `walk` |
+//! | set-up: edges and attribute planes | `setup`, `planes` |
+//! | coverage: the exact edge walk, rows in tables of up to 32 | `walk`, `planes` |
 //! | spans: depth test, shading, RGB565 | `span`, [`depth`], [`color`] |
-//! | output: a `DrawTarget`, a framebuffer, bands | [`renderer`], [`render`], [`framebuffer`], [`band`] |
+//! | output: a `DrawTarget`, a framebuffer, bands | [`renderer`], `output`, [`render`], [`framebuffer`], [`band`] |
 //!
 //! Numbers are fixed-point throughout ([`num`], [`vector`]); each format's
 //! range and overflow proof is stated where it is defined. What differs by
@@ -104,11 +104,14 @@ mod explicit;
 pub mod framebuffer;
 pub mod illumination;
 pub mod light;
+mod light_term;
 pub mod material;
 pub mod mesh;
 mod normalize;
 pub mod num;
 mod options;
+mod output;
+mod planes;
 mod platform;
 pub mod render;
 pub mod renderer;

@@ -25,7 +25,7 @@
 use fixed::types::U32F32;
 
 use crate::color::Rgb;
-use crate::illumination::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
+use crate::light_term::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
 use crate::material::Specular;
 use crate::normalize::{normalize, normalize_len};
 use crate::num::{clamp_wide, step_wide, MiniFloat, WidePoint};

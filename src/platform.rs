@@ -13,7 +13,7 @@
 //! the test suite on the host with `--cfg fixshade_soft_mul64 --cfg
 //! fixshade_soft_div32`); only the instructions differ.
 
-use crate::walk::{Planes, Row};
+use crate::planes::{Planes, Row};
 
 /// The core has no 32 × 32 → 64-bit multiply instruction (ARMv6-M: the
 /// Cortex-M0 and M0+, the RP2040's core; ARMv8-M Baseline: the Cortex-M23),
@@ -45,7 +45,8 @@ pub(crate) const fn little_endian() -> bool {
 /// `x.leading_zeros()`. ARMv6-M and ARMv8-M Baseline have no
 /// count-leading-zeros instruction (nor a 32 × 32 → 64-bit multiply, whose
 /// flag tells them apart), and the library's (`__clzsi2`) is a call of
-/// about 30 instructions: there, five inline halving steps.
+/// about 30 instructions: there, three inline halving steps and a table
+/// of the top nibble's.
 #[inline(always)]
 pub(crate) fn leading_zeros(x: u32) -> u32 {
     if SOFT_MUL64 {
@@ -167,26 +168,27 @@ pub(crate) fn pair_run(l: [u32; 3], s: [u32; 3], row: &mut [u16]) -> [u32; 3] {
             // SAFETY: `quads` iterations store 8 bytes each from the row's
             // first pixel on: `4·quads ≤ row.len()` pixels.
             unsafe {
+                // One pair: pack its two pixels into a word, step the
+                // three channels, store.
+                macro_rules! pair {
+                    () => {
+                        concat!(
+                            "and {t}, {g}, #0xFC00FC00\n",
+                            "and {w}, {r}, #0xF800F800\n",
+                            "orr {w}, {w}, {t}, lsr #5\n",
+                            "and {t}, {b}, #0xF800F800\n",
+                            "orr {w}, {w}, {t}, lsr #11\n",
+                            "add {r}, {sr}\n",
+                            "add {g}, {sg}\n",
+                            "add {b}, {sb}\n",
+                            "str {w}, [{at}], #4",
+                        )
+                    };
+                }
                 core::arch::asm!(
                     "1:",
-                    "and {t}, {g}, #0xFC00FC00",
-                    "and {w}, {r}, #0xF800F800",
-                    "orr {w}, {w}, {t}, lsr #5",
-                    "and {t}, {b}, #0xF800F800",
-                    "orr {w}, {w}, {t}, lsr #11",
-                    "add {r}, {sr}",
-                    "add {g}, {sg}",
-                    "add {b}, {sb}",
-                    "str {w}, [{at}], #4",
-                    "and {t}, {g}, #0xFC00FC00",
-                    "and {w}, {r}, #0xF800F800",
-                    "orr {w}, {w}, {t}, lsr #5",
-                    "and {t}, {b}, #0xF800F800",
-                    "orr {w}, {w}, {t}, lsr #11",
-                    "add {r}, {sr}",
-                    "add {g}, {sg}",
-                    "add {b}, {sb}",
-                    "str {w}, [{at}], #4",
+                    pair!(),
+                    pair!(),
                     "subs {n}, #1",
                     "bne 1b",
                     r = inout(reg) l[0],
@@ -281,8 +283,9 @@ impl<'a> Rows<'a> {
 /// steps held in registers from row to row and each row's start made
 /// from the row's planes with four multiply-accumulates. In Rust, LLVM
 /// keeps the four planes, their steps and two pointers in too few
-/// registers (steps reloaded at every pixel: 24 and 41 instructions), and
-/// a row's span cost some 120 instructions of spills around it. The frame
+/// registers: the steps are reloaded at every pixel, and a row's span is
+/// wrapped in spills (the counts of that form are in
+/// `docs/PERFORMANCE_LOG.md`). The frame
 /// pointer `r7` and `r6`, which `asm!` may not name, are saved and used.
 /// Elsewhere the same loop in Rust.
 ///

@@ -34,7 +34,9 @@
 //!
 //! What a scene does not use is not compiled.
 //!
+//! [`Bands`]: crate::band::Bands
 //! [`DepthBuffer`]: crate::depth::DepthBuffer
+//! [`Framebuffer`]: crate::framebuffer::Framebuffer
 //! [`DepthBand`]: crate::depth::DepthBand
 
 use core::convert::Infallible;
@@ -43,20 +45,19 @@ use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::Drawable;
 
-use crate::band::{BandDepth, Bands, Cached, Recomputed, VertexMode};
+use crate::band::{Cached, Recomputed, VertexMode};
 use crate::camera::Camera;
 use crate::color::Rgb;
 use crate::depth::{DepthTest, NoDepth};
-use crate::framebuffer::Framebuffer;
 use crate::illumination::{InfiniteViewer, Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::Mesh;
 use crate::render::CachedVertex;
-use crate::render::{
-    DrawStats, Gouraud, Prepared, RenderError, RenderOptions, ShadingKind, ShadingMode,
-};
+use crate::render::{DrawStats, Gouraud, RenderError, RenderOptions, ShadingMode};
 use crate::vector::Mat4;
+
+pub use crate::output::{FrameDepth, Output};
 
 /// How a scene is drawn: the camera, the material, the lights, the global
 /// ambient light, the viewer, the shading mode and the switches. Built once
@@ -247,7 +248,7 @@ impl<'a, 'm, R, D, C> Shaded<'a, 'm, R, D, C> {
 
     /// Tests and writes `depth`: a [`DepthBuffer`](crate::depth::DepthBuffer)
     /// of the target's size for a whole frame, a
-    /// [`DepthBand`](crate::depth::DepthBand) for [`Bands`]. Clearing a
+    /// [`DepthBand`](crate::depth::DepthBand) for [`Bands`](crate::band::Bands). Clearing a
     /// depth buffer between frames is the caller's
     /// ([`DepthBuffer::clear`](crate::depth::DepthBuffer::clear)).
     pub fn with_depth<'z, Z: DepthTest>(self, depth: &'z mut Z) -> Shaded<'a, 'm, R, &'z mut Z, C> {
@@ -283,8 +284,8 @@ where
     C: VertexMode,
 {
     /// Draws the mesh into `output`: any `DrawTarget<Color = Rgb565>` (one
-    /// `fill_contiguous` per span), a [`Framebuffer`] (written in place),
-    /// or [`Bands`]. Clearing the target is the caller's, except for
+    /// `fill_contiguous` per span), a [`Framebuffer`](crate::framebuffer::Framebuffer) (written in place),
+    /// or [`Bands`](crate::band::Bands). Clearing the target is the caller's, except for
     /// bands, each cleared to its background.
     ///
     /// ```
@@ -333,9 +334,9 @@ where
     /// assert_eq!(s.pixels as usize, drawn);
     /// ```
     ///
-    /// A [`Framebuffer`] is written in place (no `fill_contiguous` call per
+    /// A [`Framebuffer`](crate::framebuffer::Framebuffer) is written in place (no `fill_contiguous` call per
     /// span): the same pixels as through its `DrawTarget`,
-    /// [`Framebuffer::canvas`]:
+    /// [`Framebuffer::canvas`](crate::framebuffer::Framebuffer::canvas):
     ///
     /// ```
     /// use fixshade::prelude::*;
@@ -354,7 +355,7 @@ where
     /// assert_eq!(a, b);
     /// ```
     ///
-    /// [`Bands`] render the frame a few rows at a time through a small
+    /// [`Bands`](crate::band::Bands) render the frame a few rows at a time through a small
     /// colour band (and a [`DepthBand`](crate::depth::DepthBand)), each
     /// band sent to the display as one `fill_contiguous`: the pixels of the
     /// whole frame drawn over the background, with cached or recomputed
@@ -469,141 +470,5 @@ where
             Ok(stats) => Ok(Ok(stats)),
             Err(e) => e.split().map(Err),
         }
-    }
-}
-
-/// `NoNormals` for a mesh without normals in a mode that needs them (a
-/// mesh error first, as the draw reports it), before the draw's constants
-/// are made.
-#[inline(always)]
-pub(crate) fn normals_for<M: ShadingMode>(mesh: &Mesh) -> Result<(), RenderError<Infallible>> {
-    if M::KIND != ShadingKind::Flat && mesh.normals.is_none() {
-        mesh.validate().map_err(RenderError::Mesh)?;
-        return Err(RenderError::NoNormals);
-    }
-    Ok(())
-}
-
-mod sealed {
-    pub trait Sealed {}
-}
-
-/// Where a draw's pixels go, and with which depth test `D`: a whole frame
-/// into any `DrawTarget<Color = Rgb565>` or a [`Framebuffer`] (a
-/// [`DepthBuffer`](crate::depth::DepthBuffer) or none), or the frame in
-/// [`Bands`] (a [`DepthBand`](crate::depth::DepthBand) or none).
-pub trait Output<D>: sealed::Sealed {
-    /// The target's error.
-    type Error;
-
-    /// Draws `mesh` with `p`'s constants (the renderer's internals).
-    #[doc(hidden)]
-    fn render<S, V, L, M, C>(
-        &mut self,
-        p: &Prepared<'_, S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        vertices: &mut C,
-    ) -> Result<DrawStats, RenderError<Self::Error>>
-    where
-        S: Specular,
-        V: Viewer,
-        L: LightSet,
-        M: ShadingMode,
-        C: VertexMode;
-}
-
-/// A depth test for a whole frame: none, or a buffer of the target's size.
-pub trait FrameDepth: DepthTest {
-    #[doc(hidden)]
-    type Test: DepthTest;
-    #[doc(hidden)]
-    fn test(&mut self) -> &mut Self::Test;
-}
-impl FrameDepth for NoDepth {
-    type Test = NoDepth;
-    #[inline(always)]
-    fn test(&mut self) -> &mut NoDepth {
-        self
-    }
-}
-impl<'a> FrameDepth for crate::depth::DepthBuffer<'a> {
-    type Test = crate::depth::DepthBuffer<'a>;
-    #[inline(always)]
-    fn test(&mut self) -> &mut Self::Test {
-        self
-    }
-}
-impl<Z: FrameDepth> FrameDepth for &mut Z {
-    type Test = Z::Test;
-    #[inline(always)]
-    fn test(&mut self) -> &mut Z::Test {
-        (**self).test()
-    }
-}
-
-impl<T: DrawTarget<Color = Rgb565>> sealed::Sealed for T {}
-impl<T: DrawTarget<Color = Rgb565>, D: FrameDepth> Output<D> for T {
-    type Error = T::Error;
-    #[inline(always)]
-    fn render<S, V, L, M, C>(
-        &mut self,
-        p: &Prepared<'_, S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        vertices: &mut C,
-    ) -> Result<DrawStats, RenderError<T::Error>>
-    where
-        S: Specular,
-        V: Viewer,
-        L: LightSet,
-        M: ShadingMode,
-        C: VertexMode,
-    {
-        p.draw_target::<M, T, D::Test, C>(mesh, self, depth.test(), vertices)
-    }
-}
-
-impl sealed::Sealed for Framebuffer<'_> {}
-impl<D: FrameDepth> Output<D> for Framebuffer<'_> {
-    type Error = Infallible;
-    #[inline(always)]
-    fn render<S, V, L, M, C>(
-        &mut self,
-        p: &Prepared<'_, S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        vertices: &mut C,
-    ) -> Result<DrawStats, RenderError<Infallible>>
-    where
-        S: Specular,
-        V: Viewer,
-        L: LightSet,
-        M: ShadingMode,
-        C: VertexMode,
-    {
-        p.draw_framebuffer::<M, D::Test, C>(mesh, self, depth.test(), vertices)
-    }
-}
-
-impl<T> sealed::Sealed for Bands<'_, '_, T> {}
-impl<T: DrawTarget<Color = Rgb565>, D: BandDepth> Output<D> for Bands<'_, '_, T> {
-    type Error = T::Error;
-    #[inline(always)]
-    fn render<S, V, L, M, C>(
-        &mut self,
-        p: &Prepared<'_, S, V, L>,
-        mesh: &Mesh,
-        depth: &mut D,
-        vertices: &mut C,
-    ) -> Result<DrawStats, RenderError<T::Error>>
-    where
-        S: Specular,
-        V: Viewer,
-        L: LightSet,
-        M: ShadingMode,
-        C: VertexMode,
-    {
-        p.draw_bands::<M, T, D, C>(mesh, self, depth, vertices)
     }
 }

@@ -38,8 +38,9 @@ use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
 use crate::num::widening::{mul_i32, mul_i32_i16, mul_i32_u32};
+use crate::planes::Planes;
 use crate::platform;
-use crate::walk::{Edge, Planes, Walk};
+use crate::walk::{Edge, Walk};
 
 /// Attribute values lie within `±ATTR`: their differences, below 2²⁶,
 /// times a side below 2¹⁵, stay below 2⁴¹.

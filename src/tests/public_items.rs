@@ -5,7 +5,7 @@
 /// The public modules' sources, by the modules whose path names their
 /// items (the private `options` and `vertex` hold items that `render` and
 /// `band` re-export).
-const MODULES: [(&[&str], &str); 16] = [
+const MODULES: [(&[&str], &str); 18] = [
     (&["band"], include_str!("../band.rs")),
     (&["camera"], include_str!("../camera.rs")),
     (&["color"], include_str!("../color.rs")),
@@ -13,6 +13,7 @@ const MODULES: [(&[&str], &str); 16] = [
     (&["framebuffer"], include_str!("../framebuffer.rs")),
     (&["illumination"], include_str!("../illumination.rs")),
     (&["light"], include_str!("../light.rs")),
+    (&["illumination"], include_str!("../light_term.rs")),
     (&["material"], include_str!("../material.rs")),
     (&["mesh"], include_str!("../mesh.rs")),
     (&["num"], include_str!("../num/mini_float.rs")),
@@ -20,6 +21,7 @@ const MODULES: [(&[&str], &str); 16] = [
     (&["render"], include_str!("../options.rs")),
     (&["band", "render"], include_str!("../vertex.rs")),
     (&["render"], include_str!("../render.rs")),
+    (&["renderer"], include_str!("../output.rs")),
     (&["renderer"], include_str!("../renderer.rs")),
     (&["vector"], include_str!("../vector.rs")),
 ];

@@ -10,8 +10,9 @@ use embedded_graphics::prelude::{OriginDimensions, Pixel, Point, RawData, Size};
 use proptest::prelude::*;
 
 use crate::depth::{DepthBuffer, DepthTest, NoDepth};
-use crate::span::{Gouraud, Memory, Out, TargetSink};
-use crate::walk::{Planes, Span};
+use crate::planes::Planes;
+use crate::span::{Flat, Gouraud, Memory, Out, TargetSink};
+use crate::walk::Span;
 
 /// A Gouraud span's start and step: depth and three channels, each inside
 /// its field by the planes' margin over `n` pixels.
@@ -35,10 +36,6 @@ fn span() -> impl Strategy<Value = ([i32; 4], [i32; 4], u32)> {
     })
 }
 
-/// Draws span `(s, d, n)` on row 3 from column 2 of a `W` × 8 target into
-/// memory and into a mock display, both with row 3's depths `stored`
-/// beforehand (`None`: no depth test), and returns both targets' pixels
-/// and depths.
 /// The test target's width: spans cross blocks of pairs.
 const W: usize = 160;
 
@@ -66,6 +63,10 @@ impl DrawTarget for Display {
     }
 }
 
+/// Draws span `(s, d, n)` on row 3 from column 2 of a `W` × 8 target into
+/// memory and into a mock display, both with row 3's depths `stored`
+/// beforehand (`None`: no depth test), and returns both targets' pixels
+/// and depths.
 fn both(s: [i32; 4], d: [i32; 4], n: u32, stored: Option<&[u16]>, dither: bool) -> [Vec<u16>; 4] {
     let sh = Gouraud { dither };
     // The planes at column 0 of row 0, so that the span's start is `s`.
@@ -154,4 +155,34 @@ fn pack_is_the_channels_integer_parts() {
             assert_eq!(p, want, "{v} {f}");
         }
     }
+}
+
+/// The example from the docs of `NoDepth`: a later, farther span is drawn
+/// over a nearer one.
+#[test]
+fn no_depth_draws_later_over_earlier() {
+    assert!(!NoDepth::ENABLED && NoDepth.row(0, 0, 8).is_empty());
+    let mut px = [0u16; 4];
+    let mut out = Memory::new(&mut px, 4, 0, (0, 0));
+    for (c, z) in [(1, 0), (2, 1 << 28)] {
+        let sh = Flat {
+            plain: c,
+            shade: Default::default(),
+            dither: false,
+        };
+        let planes = Planes {
+            at: [z],
+            gx: [0],
+            gy: [0],
+        };
+        let span = Span {
+            y: 0,
+            x0: 0,
+            n: 4,
+            dy: 0,
+            planes: &planes,
+        };
+        out.span(&mut NoDepth, &span, &sh).unwrap();
+    }
+    assert_eq!(px, [2; 4]); // the later, farther span is drawn over the nearer
 }

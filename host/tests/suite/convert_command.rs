@@ -53,9 +53,6 @@ fn convert<S: AsRef<OsStr>>(args: &[S]) -> Run {
     }
 }
 
-/// Converts `input` to `output`, expecting bad input refused: exit code 2,
-/// one line on stderr starting with `fixshade-convert: {prefix}` and
-/// containing `needle`, nothing on stdout and no output written.
 /// Writes `text` as `dir/name` and checks that the converter refuses it
 /// with a line naming the file and holding `needle`.
 fn refuses_file(dir: &Path, name: &str, text: &[u8], needle: &str) {
@@ -69,6 +66,9 @@ fn refuses_file(dir: &Path, name: &str, text: &[u8], needle: &str) {
     );
 }
 
+/// Converts `input` to `output`, expecting bad input refused: exit code 2,
+/// one line on stderr starting with `fixshade-convert: {prefix}` and
+/// containing `needle`, nothing on stdout and no output written.
 fn refuses(input: &OsStr, output: &Path, prefix: &str, needle: &str) {
     let run = convert(&[input, output.as_os_str()]);
     let err = &run.stderr;

@@ -9,7 +9,8 @@
 //! scenes past the formats' range (far 200, a camera at (100, 100, 100),
 //! a mesh of extent 10⁶, a model scaled by 10⁶) are refused as errors.
 //!
-//! `cargo test --test suite world_scale -- --nocapture` prints each case.
+//! `cargo test --release -p fixshade-host --test suite world_scale --
+//! --nocapture` prints each case.
 
 use fixshade::render::RenderError;
 use fixshade_host::error_measure::compare;
@@ -162,9 +163,9 @@ fn scenes_past_the_range_are_refused() {
 }
 
 /// A rod 100 units long reaching from far to close before the eye: the
-/// vertex rows, scaled to its reach, are coarse at its near end (found by a
-/// review: accepted and drawn with 1 % of its coverage wrong). Refused, or
-/// within the bound.
+/// vertex rows, scaled to its reach, are coarse at its near end (before
+/// the check's second term, such a rod was accepted and drawn with 1 % of
+/// its coverage wrong). Refused, or within the bound.
 #[test]
 fn long_objects_reaching_the_eye_are_refused_or_within_the_bound() {
     let rod = |w: u32, h: u32, a: f64, len: f64, z0: f64, eye: [f64; 3], near: f64| {
