@@ -630,7 +630,8 @@ mod tests {
 
     /// The extremes of every operand (entries of `i32::MIN`, boxes at the
     /// edge of both formats, the tallest height, both projections) run
-    /// without overflow in debug builds, and refuse.
+    /// without overflow in debug builds; the wildest matrix and box on the
+    /// tallest target refuse, and the standard sphere's scene resolves.
     #[test]
     fn resolves_at_the_formats_edges() {
         let edge = Bounds {
