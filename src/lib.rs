@@ -76,7 +76,7 @@
 //! | [`framebuffer`] | an in-memory target | [`Canvas`](framebuffer::Canvas), [`Framebuffer`](framebuffer::Framebuffer), [`FramebufferTooSmall`](framebuffer::FramebufferTooSmall) |
 //! | [`band`] | band rendering | [`BandDepth`](band::BandDepth), [`Bands`](band::Bands), [`Cached`](band::Cached), [`Recomputed`](band::Recomputed), [`VertexMode`](band::VertexMode), [`CHUNKS`](band::CHUNKS) |
 //! | [`color`] | colours | [`Rgb`](color::Rgb), [`Shade`](color::Shade), [`RGB_MAX`](color::RGB_MAX), [`SHADE_ONE`](color::SHADE_ONE), [`pack565`](color::pack565) |
-//! | [`vector`] | fixed-point vectors and matrices | [`FormatError`](vector::FormatError), [`Mat4`](vector::Mat4), [`Unit3`](vector::Unit3), [`Vec3`](vector::Vec3), [`COORD_FRAC`](vector::COORD_FRAC), [`UNIT_ONE`](vector::UNIT_ONE), [`coord_from_f32`](vector::coord_from_f32), [`coord_from_f64`](vector::coord_from_f64), [`normal_matrix`](vector::normal_matrix) |
+//! | [`vector`] | fixed-point vectors and matrices | [`FormatError`](vector::FormatError), [`Mat4`](vector::Mat4), [`Unit3`](vector::Unit3), [`Vec3`](vector::Vec3), [`COORD_FRAC`](vector::COORD_FRAC), [`MAX_ANISOTROPY`](vector::MAX_ANISOTROPY), [`UNIT_ONE`](vector::UNIT_ONE), [`coord_from_f32`](vector::coord_from_f32), [`coord_from_f64`](vector::coord_from_f64), [`normal_matrix`](vector::normal_matrix) |
 //! | [`num`] | number formats | [`MiniFloat`](num::MiniFloat), [`WidePoint`](num::WidePoint) |
 //!
 //! At the root: [`Renderer`], [`Shaded`], [`Output`], [`FrameDepth`], [`Rgb`],

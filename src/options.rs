@@ -208,6 +208,11 @@ pub enum RenderError<E> {
     /// more than about 1/512 px. Express it in smaller units (larger
     /// numbers), nearer the world's origin.
     SceneTooSmall,
+    /// A light reads the mesh's normals, and the model-view matrix has no
+    /// [`normal_matrix`](crate::vector::normal_matrix): it is singular at
+    /// its entries' precision, or scales one direction more than about
+    /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another.
+    DegenerateModel,
     /// The target reported an error.
     Target(E),
 }
@@ -225,6 +230,7 @@ impl<E> RenderError<E> {
             RenderError::BandTooSmall => RenderError::BandTooSmall,
             RenderError::TargetTooLarge => RenderError::TargetTooLarge,
             RenderError::SceneTooSmall => RenderError::SceneTooSmall,
+            RenderError::DegenerateModel => RenderError::DegenerateModel,
             RenderError::Target(e) => return Err(e),
         })
     }
@@ -262,6 +268,9 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
             RenderError::SceneTooSmall => f.write_str(
                 "scene too small for the world's 2^-24 steps on this target: express it in smaller units",
             ),
+            RenderError::DegenerateModel => {
+                f.write_str("model matrix singular or scaling one axis over 2^11 times another")
+            }
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }
     }

@@ -117,8 +117,10 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             return Err(RenderError::SceneTooSmall);
         }
         let (origin, rect) = rect_of((w, h));
+        let stage = Stage::new(&self.lighting, mesh, &self.modelview, &proj, w, h)
+            .ok_or(RenderError::DegenerateModel)?;
         Ok(Some(Frame {
-            stage: Stage::new(&self.lighting, mesh, &self.modelview, &proj, w, h),
+            stage,
             options: self.options,
             size: (w, h),
             origin,

@@ -217,29 +217,34 @@ pub struct Shaded<'a, 'm, R, D = NoDepth, C = Recomputed> {
 }
 
 impl<'a, 'm, R, D, C> Shaded<'a, 'm, R, D, C> {
-    /// The model matrix, object to world space (default: the identity). A
-    /// singular one gives zero normals (lit by `E + A·Ka` only).
+    /// The model matrix, object to world space (default: the identity).
+    /// Where a light reads the mesh's normals, a singular one, or one that
+    /// scales a direction more than about
+    /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another,
+    /// is refused ([`RenderError::DegenerateModel`](crate::render::RenderError::DegenerateModel)):
+    /// the normals would have no direction. Without lights it draws.
     ///
     /// ```
-    /// use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
     /// use fixshade::prelude::*;
+    /// use fixshade::render::RenderError;
     /// # static P: [[i16; 3]; 3] = [[-16384, -16384, 0], [16384, -16384, 0], [0, 16384, 0]];
     /// # static N: [PackedNormal; 3] = [PackedNormal::Z; 3];
     /// # const MESH: Mesh = Mesh::new(&P, Bounds::cube(2.0), &[[0, 1, 2]]).with_normals(&N);
     /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
     /// # let sun = DirectionalLight::new([0.0, 0.0, 1.0]).unwrap();
     /// let glow = Material::new().with_emission(Rgb::grey(0.5));
-    /// let renderer = Renderer::new(&camera, &glow, &sun);
     /// // Flattens z: singular, though the triangle (at z = 0) keeps its shape.
     /// let m = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0; 4], [0.0, 0.0, 0.0, 1.0]];
     /// let squash = Mat4::from_f32(m).unwrap();
     /// let mut px = [0u16; 32 * 32];
     /// let mut fb = Framebuffer::new(&mut px, 32, 32).unwrap();
-    /// let s = MESH.shaded(&renderer).with_model(squash).draw(&mut fb).unwrap();
-    /// // No normal survives it: the sun adds nothing to the emission.
-    /// let e = RawU16::from(renderer.lighting().ambient().to_rgb565()).into_inner();
-    /// assert!(s.pixels > 50 && e != 0);
-    /// assert!(px.iter().all(|&p| p == 0 || p == e));
+    /// let lit = Renderer::new(&camera, &glow, &sun);
+    /// let e = MESH.shaded(&lit).with_model(squash).draw(&mut fb);
+    /// assert_eq!(e, Err(RenderError::DegenerateModel));
+    /// // Its shadow, say, drawn without lights: the emission alone.
+    /// let unlit = Renderer::new(&camera, &glow, &());
+    /// let s = MESH.shaded(&unlit).with_model(squash).draw(&mut fb).unwrap();
+    /// assert!(s.pixels > 50 && px.iter().all(|&p| p == 0 || p == px[16 * 32 + 16]));
     /// ```
     #[must_use]
     pub fn with_model(self, model: Mat4) -> Self {

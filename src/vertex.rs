@@ -208,13 +208,12 @@ impl Rows {
     /// N]::map` is not inlined on ARMv6-M, a call a vertex).
     #[inline(always)]
     fn fourteen(&self, q: [i16; 3]) -> [i32; 4] {
-        let r = &self.r;
-        [
-            r[0].fourteen(q),
-            r[1].fourteen(q),
-            r[2].fourteen(q),
-            r[3].fourteen(q),
-        ]
+        let mut out = [0; 4];
+        for (o, r) in out.iter_mut().zip(&self.r) {
+            *o = r.fourteen(q);
+            platform::keep_loop_rolled();
+        }
+        out
     }
 
     /// The exact rows of position `q`.
@@ -580,7 +579,8 @@ pub(crate) struct Stage<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
 
 impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
     /// The stage for `mesh` drawn with `modelview` (without the box),
-    /// projection `p`, on a `w × h` viewport.
+    /// projection `p`, on a `w × h` viewport; `None` where a light reads
+    /// normals and `modelview` has no normal matrix.
     pub(crate) fn new(
         lighting: &'a Lighting<S, V, L>,
         mesh: &'a Mesh<'m>,
@@ -588,9 +588,9 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
         p: &ProjectionCoeffs,
         w: u32,
         h: u32,
-    ) -> Self {
+    ) -> Option<Self> {
         let folded = mesh.bounds.fold(modelview);
-        Stage {
+        Some(Stage {
             lighting,
             mesh,
             modelview: folded,
@@ -598,10 +598,10 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
             normal_m: if <L::Prepared as PreparedLights>::EMPTY {
                 [[0; 3]; 3]
             } else {
-                normal_matrix(modelview).unwrap_or([[0; 3]; 3])
+                normal_matrix(modelview)?
             },
             rows: Rows::new(&folded, p, w, h),
-        }
+        })
     }
 
     /// Mesh vertex `i`'s position (`i` below the vertex count).

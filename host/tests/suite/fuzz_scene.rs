@@ -39,6 +39,7 @@ use fixshade::render::{
     CachedVertex, DrawStats, Flat, Gouraud, PhongShading, RenderError, RenderOptions, ShadingMode,
     MAX_TARGET_SIDE,
 };
+use fixshade::vector::normal_matrix;
 use fixshade::{Exponent, Mat4, Material, Renderer, Rgb, Unit3, Vec3};
 use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::MeshDesc;
@@ -656,6 +657,10 @@ pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
     }
     if !s.camera.resolves(&s.model, &s.bounds, s.height) {
         return Some(RenderError::SceneTooSmall);
+    }
+    // The lights (a `heapless::Vec`, even an empty one) read normals.
+    if normal_matrix(&s.camera.view.mul(&s.model)).is_none() {
+        return Some(RenderError::DegenerateModel);
     }
     None
 }

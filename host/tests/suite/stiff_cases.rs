@@ -22,7 +22,7 @@ use common::assert_within_bound;
 use fixshade::camera::{Camera, Projection as CamProjection};
 use fixshade::framebuffer::Framebuffer;
 use fixshade::mesh::{Mesh, PackedNormal};
-use fixshade::render::{CachedVertex, Flat, RenderOptions};
+use fixshade::render::{CachedVertex, Flat, RenderError, RenderOptions};
 use fixshade::{Material, Renderer, Vec3};
 use fixshade_host::error_measure::{compare, ErrorStats};
 use fixshade_host::generate;
@@ -866,5 +866,47 @@ fn viewport_wider_than_i16() {
             .draw(&mut fb)
             .unwrap();
         assert!(px == t.pixels, "{cols:?}: the two paths differ");
+    }
+}
+
+/// Models that scale one axis far below the others (a sphere flattened to
+/// a disc, face on and turned): drawn within the bound up to 1 000 times
+/// flatter in every shading mode (the normals' matrix keeps the small
+/// axis: taken from the entries rounded to the largest's precision, it
+/// lost it, and the disc drew with zero normals, ambient alone), and
+/// refused past about `MAX_ANISOTROPY` (at 10⁴, the normals' own steps,
+/// turned that much, put Phong shading 2 LSB away from the reference).
+#[test]
+fn strongly_anisotropic_models() {
+    let light = LightDesc::Directional {
+        direction: [0.3, 0.4, 1.0],
+        diffuse: [1.0; 3],
+        specular: [1.0; 3],
+    };
+    for k in [1e-2, 3e-3, 1e-3, 1e-4, 2f64.powi(-20), 1e-7] {
+        for turn in [0.0, 0.7] {
+            let (c, s) = (f64::cos(turn), f64::sin(turn));
+            for shading in [Shading::Gouraud, Shading::Phong, Shading::Flat] {
+                let mut sc = sphere(material(0.8, 0.5, 16.0), vec![light.clone()], 96, 72);
+                sc.shading = shading;
+                // Flattened along z, then turned about x.
+                sc.model = [
+                    [1.0, 0.0, 0.0, 0.0],
+                    [0.0, c, -s * k, 0.0],
+                    [0.0, s, c * k, 0.0],
+                    [0.0, 0.0, 0.0, 1.0],
+                ];
+                let name = format!("z scaled by {k:e}, turned {turn}, {shading:?}");
+                if k >= 1e-3 {
+                    let e = check(&name, &sc);
+                    println!("{name}: {e}");
+                } else {
+                    let kernel = KernelScene::new(&sc).unwrap_or_else(|e| panic!("{name}: {e}"));
+                    let err = kernel.render_frame().expect_err(&name);
+                    assert_eq!(err, RenderError::DegenerateModel, "{name}");
+                    assert!(!err.to_string().contains('\n'));
+                }
+            }
+        }
     }
 }
