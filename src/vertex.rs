@@ -276,21 +276,32 @@ impl Rows {
     /// snapped, and its rounding is the estimate's.
     #[inline(always)]
     fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
-        let [x14, y14, z14, w14] = self.fourteen(q);
+        Self::divided(self.fourteen(q))
+    }
+
+    /// [`Rows::fast`] from the rows `⌊V/2¹⁴⌋` of [`Rows::fourteen`].
+    #[inline(always)]
+    fn divided([x14, y14, z14, w14]: [i32; 4]) -> [i32; 3] {
         let n = platform::leading_zeros(w14 as u32);
         let d = (w14 as u32) << n;
         let r = recip_fast(d);
         // `⌊p/2³¹⌋` of each product `p` is all that is read of it.
-        let snap = |v: i32| {
+        let estimate = |v: i32| {
             let p = mul_i32_u32_shr31(v << n, r);
             let q = (p + (1 << 15)) >> 16;
-            if near_half(p, q) {
-                return exact_round(v, w14);
-            }
-            q
+            (q, near_half(p, q))
         };
+        let ((x, near_x), (y, near_y)) = (estimate(x14), estimate(y14));
         let zp = mul_i32_u32_shr31(z14 << (n - 1), r);
-        [snap(x14), snap(y14), (zp + (1 << 5)) >> 6]
+        let z = (zp + (1 << 5)) >> 6;
+        // Where either estimate is near a half, both from the exact
+        // division (the other's is the same): one call, at the end, so
+        // that no value waits across it.
+        if near_x || near_y {
+            let (x, y) = exact_round_xy(x14, y14, w14);
+            return [x, y, z];
+        }
+        [x, y, z]
     }
 
     /// The unsnapped window position of fast-row position `q` in units of
@@ -339,9 +350,14 @@ fn near_half(p: i32, q: i32) -> bool {
 }
 
 /// `round(x·2¹⁶/w)` exactly, half up (`|x| < 2³¹`, `w > 0`).
-#[inline(never)]
 fn exact_round(x: i32, w: i32) -> i32 {
     floor_div(((x as i64) << 17) + w as i64, 2 * w as i64) as i32
+}
+
+/// [`exact_round`] of `x` and of `y` (rare, out of line).
+#[inline(never)]
+fn exact_round_xy(x: i32, y: i32, w: i32) -> (i32, i32) {
+    (exact_round(x, w), exact_round(y, w))
 }
 
 /// `round(v·2^s / w)`, half up, for `|v| < 2⁴⁶` and `0 < w < 2⁴⁶`, if its
@@ -617,10 +633,30 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
     }
 
     /// Projects every vertex of the mesh into `cache` (one per vertex).
+    /// On a core with [`FEW_REGISTERS`](platform::FEW_REGISTERS), a
+    /// contained mesh's vertices go in batches, their rows first and their
+    /// divisions after, each in a loop of its own: each loop's values fit
+    /// the registers, where one loop of both spilled them (the M0+'s S1:
+    /// 374 instructions a vertex against 424).
     #[inline(never)]
     pub(crate) fn project_all(&self, cache: &mut [CachedVertex]) {
-        for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
-            *c = CachedVertex::of(self.rows.window(*q));
+        if !platform::FEW_REGISTERS || !self.rows.contained {
+            for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
+                *c = CachedVertex::of(self.rows.window(*q));
+            }
+            return;
+        }
+        const BATCH: usize = 16;
+        let mut rows = [[0i32; 4]; BATCH];
+        for (cs, qs) in cache.chunks_mut(BATCH).zip(self.mesh.positions.chunks(BATCH)) {
+            for (r, q) in rows.iter_mut().zip(qs) {
+                *r = self.rows.fourteen(*q);
+                platform::keep_loop_rolled();
+            }
+            for (c, r) in cs.iter_mut().zip(&rows) {
+                *c = CachedVertex::of(Some(Rows::divided(*r)));
+                platform::keep_loop_rolled();
+            }
         }
     }
 
