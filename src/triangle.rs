@@ -59,12 +59,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
         }
-        let p = [v0.position(), v1.position(), v2.position()];
-        let area =
-            (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+        let xy = [v0.xy(), v1.xy(), v2.xy()];
+        let area = (xy[1][0] - xy[0][0]) * (xy[2][1] - xy[0][1])
+            - (xy[2][0] - xy[0][0]) * (xy[1][1] - xy[0][1]);
         if area == 0 || (area > 0 && self.options.cull) {
             return Ok(());
         }
+        // The depths only for a triangle culling keeps.
+        let p = [v0.position(), v1.position(), v2.position()];
         let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
         let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
         let (lo, hi) = ((lo(0), lo(1)), (hi(0), hi(1)));

@@ -491,6 +491,12 @@ impl CachedVertex {
         self.c[1] & (B_RARE >> 32) as u32
     }
 
+    /// The kept window position (not rare).
+    #[inline(always)]
+    pub(crate) fn xy(&self) -> [i32; 2] {
+        [self.x as i32, self.y as i32]
+    }
+
     /// The kept window position and depth attribute (not rare).
     #[inline(always)]
     pub(crate) fn position(&self) -> [i32; 3] {
