@@ -29,6 +29,7 @@
 
 use crate::num::widening::{mul_i32, mul_i32_i16};
 use crate::num::Wide;
+use crate::platform;
 use fixed::types::{I2F14, I8F24};
 
 /// Raw value of 1.0 in the `I2F14` format of [`Unit3`].
@@ -818,6 +819,8 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
             let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
             let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
             *out = mul_i32(a(r1, c1), a(r2, c2)) - mul_i32(a(r1, c2), a(r2, c1));
+            // Once a draw: nine passes of one body, not nine bodies.
+            platform::keep_loop_rolled();
         }
     }
     let bits = |v: u64| 64 - v.leading_zeros() as i32;

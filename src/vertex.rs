@@ -231,20 +231,28 @@ impl Rows {
     /// for the rare path.
     #[inline(always)]
     pub(crate) fn window(&self, q: [i16; 3]) -> Window {
-        if self.contained {
-            Some(self.fast::<false>(q))
-        } else if self.fast {
-            self.fast_tested(q)
+        if self.fast {
+            self.window_of(self.fourteen(q))
         } else {
             None
         }
     }
 
-    /// [`Rows::fast`] with the tests, out of line (a draw that is not
+    /// [`Rows::window`] from the fast rows' [`Rows::fourteen`] `v`.
+    #[inline(always)]
+    fn window_of(&self, v: [i32; 4]) -> Window {
+        if self.contained {
+            Some(Self::divided(v))
+        } else {
+            Self::tested(v)
+        }
+    }
+
+    /// [`Rows::divided`] with the tests, out of line (a draw that is not
     /// contained).
     #[inline(never)]
-    fn fast_tested(&self, q: [i16; 3]) -> Window {
-        let [x14, y14, z14, w14] = self.fourteen(q);
+    fn tested(v: [i32; 4]) -> Window {
+        let [x14, y14, z14, w14] = v;
         // In front of the eye with 22 bits (precision), in front of the
         // near plane, before z_w = 2, and |X/W| < 2^-2 (|x| < 2^14).
         let quarter = w14 >> 2;
@@ -256,7 +264,7 @@ impl Rows {
         if !lean {
             return None;
         }
-        let v = self.fast::<true>(q);
+        let v = Self::divided(v);
         (v[0].abs() <= GUARD && v[1].abs() <= GUARD).then_some(v)
     }
 
@@ -274,12 +282,6 @@ impl Rows {
     /// For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹` (`n ≥ 1` as
     /// `w₁₄ < 2³¹`), `⌊zs·r/2³¹⌋` below 2³¹ (`w₁₄ ≥ 2²²`); it is not
     /// snapped, and its rounding is the estimate's.
-    #[inline(always)]
-    fn fast<const TESTED: bool>(&self, q: [i16; 3]) -> [i32; 3] {
-        Self::divided(self.fourteen(q))
-    }
-
-    /// [`Rows::fast`] from the rows `⌊V/2¹⁴⌋` of [`Rows::fourteen`].
     #[inline(always)]
     fn divided([x14, y14, z14, w14]: [i32; 4]) -> [i32; 3] {
         let n = platform::leading_zeros(w14 as u32);
@@ -646,21 +648,25 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
     /// 374 instructions a vertex against 424).
     #[inline(never)]
     pub(crate) fn project_all(&self, cache: &mut [CachedVertex]) {
-        if !platform::FEW_REGISTERS || !self.rows.contained {
+        let rows = &self.rows;
+        if !platform::FEW_REGISTERS || !rows.fast {
             for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
-                *c = CachedVertex::of(self.rows.window(*q));
+                *c = CachedVertex::of(rows.window(*q));
             }
             return;
         }
         const BATCH: usize = 16;
-        let mut rows = [[0i32; 4]; BATCH];
-        for (cs, qs) in cache.chunks_mut(BATCH).zip(self.mesh.positions.chunks(BATCH)) {
-            for (r, q) in rows.iter_mut().zip(qs) {
-                *r = self.rows.fourteen(*q);
+        let mut v = [[0i32; 4]; BATCH];
+        for (cs, qs) in cache
+            .chunks_mut(BATCH)
+            .zip(self.mesh.positions.chunks(BATCH))
+        {
+            for (v, q) in v.iter_mut().zip(qs) {
+                *v = rows.fourteen(*q);
                 platform::keep_loop_rolled();
             }
-            for (c, r) in cs.iter_mut().zip(&rows) {
-                *c = CachedVertex::of(Some(Rows::divided(*r)));
+            for (c, v) in cs.iter_mut().zip(&v) {
+                *c = CachedVertex::of(rows.window_of(*v));
                 platform::keep_loop_rolled();
             }
         }
