@@ -245,10 +245,12 @@ mod tests {
     }
 
     /// Blinn–Phong under the infinite viewer: the directional light's half
-    /// vector, computed once when the light is prepared, gives bit for bit the
-    /// colour of the general path ([`add_light`], which normalises `L + V` at
-    /// every call), over random normals and directions, including a light
-    /// straight behind the surface (`L = −V`, where `H` is undefined).
+    /// vector, normalised once when the light is prepared, gives the colour
+    /// of the general path ([`add_light`], which takes `1 − N·H` from the
+    /// angle between `N` and `L + V` at every call) within 32 units of
+    /// 2⁻¹⁶ (a 64th of a 5-bit step; 21 measured), over random normals and
+    /// directions, including a light straight behind the surface (`L =
+    /// −V`, where `H` is undefined).
     #[test]
     fn directional_half_vector_prepared_once_is_the_per_vertex_one() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -264,7 +266,7 @@ mod tests {
         }
         let (id, is) = (rgb([0.9, 0.7, 0.5]), rgb([1.0, 0.8, 0.6]));
         let (kd, ks) = (rgb([0.8, 0.6, 0.4]), rgb([0.7, 0.7, 0.7]));
-        let mut checked = 0;
+        let (mut checked, mut worst) = (0, 0);
         for &d in &dirs {
             let Ok(dir) = unit_from_f64(d) else { continue };
             let light = DirectionalLight {
@@ -301,10 +303,13 @@ mod tests {
                     let mut acc = [0u32; 3];
                     add_light::<BlinnPhong>(&ctx, l, 1 << 15, &gains, &mut acc);
                     let general = acc.map(|c| c.min(1 << 16));
-                    assert_eq!(
-                        lighting.shade(Vec3::ZERO, n).to_bits(),
-                        general,
-                        "light {d:?} normal {:?} n = {shininess}",
+                    let once = lighting.shade(Vec3::ZERO, n).to_bits();
+                    for c in 0..3 {
+                        worst = worst.max(once[c].abs_diff(general[c]));
+                    }
+                    assert!(
+                        (0..3).all(|c| once[c].abs_diff(general[c]) <= 32),
+                        "light {d:?} normal {:?} n = {shininess}: {once:?} {general:?}",
                         n.to_bits()
                     );
                     checked += 1;
@@ -312,5 +317,6 @@ mod tests {
             }
         }
         assert!(checked > 30_000, "{checked} cases");
+        println!("{checked} cases, worst difference {worst} units of 2^-16");
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::color::Rgb;
 use crate::material::Specular;
-use crate::normalize::normalize;
+use crate::normalize::{normalize, one_minus_cos};
 use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{Unit3, Vec3};
 
@@ -311,9 +311,9 @@ fn specular_delta<S: Specular>(ctx: &Surface, l: Unit3, nl: i32) -> Option<u32> 
     let v = ctx.view.to_bits();
     let lb = l.to_bits();
     if S::BLINN {
+        // 1 − N·H without H: the angle between N and L + V.
         let sum = [0, 1, 2].map(|i| lb[i] as i32 + v[i] as i32);
-        let h = normalize(sum)?;
-        Some(ctx.normal.half_dist_sq(h))
+        one_minus_cos(ctx.normal.to_bits().map(i32::from), sum)
     } else {
         // R = 2(N·L)N − L. nl ≤ 2^28(1+ε); (nl >> 14) ≤ 2^14 + 1, times
         // 2·N_i (≤ 2^15) is below 2^30; minus L_i·2^14 stays below 2^31.

@@ -67,7 +67,7 @@
 //! (callers that want the [`Unit3::ZERO`] convention write
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
-use crate::num::widening::mul_hi32;
+use crate::num::widening::{mul_hi32, mul_i32_u32_shr31};
 use crate::platform;
 use crate::vector::{Unit3, UNIT_ONE};
 
@@ -197,6 +197,48 @@ pub(crate) fn normalize(v: [i32; 3]) -> Option<Unit3> {
         a.map(|x| (x + (1 << (sh - 1))) >> sh)
     };
     Some(unit_core(b, v.map(|x| x < 0)))
+}
+
+/// `1 − cos θ` in `Q.28` (`0 ..= 2²⁹`) for the angle `θ` between a unit
+/// vector `n` (raw `I2F14`, its squared length within 2⁻¹³ of 1, as
+/// [`normalize`] makes them) and a vector `s` whose components lie within
+/// ±2¹⁵ (the sum of two unit vectors: Blinn's `L + V`), or `None` where
+/// `s` is zero (no direction).
+///
+/// The cosine is `n·s/(|n|·|s|)`: `1/|s|` from one reciprocal square
+/// root ([`rsqrt_q`]) of `|s|²`, and `n`'s length to first order, `|n| ≈
+/// 2¹⁴·(1 + ε)` with `ε = (|n|² − 2²⁸)/2²⁹` (the error `ε²` below 2⁻²⁴), so
+/// that its components' rounding cancels: no unit vector is made. The
+/// result is within about 2⁻²³ of `1 − cos θ` where `|s|² ≥ 2²⁸` (`|L +
+/// V| ≥ 1/2`), and within `2^(k/2)` units where `|s|²` needs an even shift
+/// `k` into [2³⁰, 2³²). (A normalised `H` carries its components' 2⁻¹⁵
+/// rounding into `1 − N·H`.) Only 32-bit arithmetic, and the same on
+/// every core.
+///
+/// Ranges: each `|nᵢsᵢ| ≤ 2²⁹`, so `n·s` and its partial sums lie within
+/// 3·2²⁹ (`i32`); `|n|² ≤ 3·2²⁸`, `|s|² ≤ 3·2³⁰` (`u32`); `t = ⌊n·s·r/2³¹⌋`
+/// is the cosine in `Q.28` times `(1 + ε)·2^(1 − k/2)`, so `t·2^(k/2 − 1)`
+/// stays below 2²⁹ + 2¹⁴; `(v/2¹⁴)·(|n|² − 2²⁸)`, the latter clamped to
+/// ±2¹⁵, within 2³⁰.
+pub(crate) fn one_minus_cos(n: [i32; 3], s: [i32; 3]) -> Option<u32> {
+    let dot = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
+    let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    let sq = |v: i32| v.unsigned_abs() * v.unsigned_abs();
+    let ss = sq(s[0]) + sq(s[1]) + sq(s[2]);
+    if ss == 0 {
+        return None;
+    }
+    let k = platform::leading_zeros(ss) & !1;
+    // r = 2³⁰/√X, X = ss·2ᵏ/2³², so 1/|s| = r·2^(k/2 − 46) and, with
+    // 1/|n| ≈ 2⁻¹⁴·(1 − ε), the cosine in Q.28 is n·s·r·2^(k/2 − 32)·(1 − ε).
+    let r = rsqrt_q(ss << k);
+    let t = mul_i32_u32_shr31(dot, r);
+    let v = if k >= 2 { t << (k / 2 - 1) } else { t >> 1 };
+    // `normalize`'s vectors lie within 2¹⁵ of 2²⁸ in |n|²; one farther
+    // from unit length (any `Unit3` may be given) is taken at 2¹⁵.
+    let dev = (nn - (1 << 28)).clamp(-(1 << 15), 1 << 15);
+    let c = v - (((v >> 14) * dev) >> 15);
+    Some(((1 << 28) - c).clamp(0, 1 << 29) as u32)
 }
 
 /// The unit vector in the direction of a wide vector and its length in `v`'s

@@ -1,7 +1,7 @@
 //! Accuracy and robustness of `crate::normalize` against an f64 (and, for
 //! lengths, an exact 128-bit integer) reference.
 
-use crate::normalize::{normalize, normalize_len, rsqrt_q};
+use crate::normalize::{normalize, normalize_len, one_minus_cos, rsqrt_q};
 use crate::Unit3;
 use proptest::prelude::*;
 
@@ -491,6 +491,71 @@ proptest! {
         check_i64(v, &mut st);
         if let (Ok(a), Ok(b), Ok(c)) = (i32::try_from(v[0]), i32::try_from(v[1]), i32::try_from(v[2])) {
             check_i32([a, b, c], &mut st);
+        }
+    }
+}
+
+/// `one_minus_cos` against the f64 angle between `normalize`'s unit
+/// vectors and sums of two of them: within 2⁻²³ (32 units of 2⁻²⁸) where
+/// `|s| ≥ 1/2`, within `2^(k/2) + 32` units below that; `None` only for
+/// `s = 0`; and any `I2F14` vector (far from unit length, at the
+/// components' ends) in range without overflow, its result in
+/// `0 ..= 2²⁹`.
+#[test]
+fn one_minus_cos_is_the_angle() {
+    let mut rng = Rng(0x5DEE_CE66_D1CE_4E5B);
+    let unit = |rng: &mut Rng| loop {
+        let v = [0; 3].map(|_| rng.signed(20) as i32);
+        if let Some(u) = normalize(v) {
+            return u.to_bits().map(i32::from);
+        }
+    };
+    let (mut worst, mut cases) = (0f64, 0);
+    for i in 0..200_000 {
+        let n = unit(&mut rng);
+        let (a, b) = (unit(&mut rng), unit(&mut rng));
+        // Every fourth `b` near `−a`: a short `s`.
+        let b = if i % 4 == 0 {
+            a.map(|c| -c + (rng.signed(4) as i32))
+        } else {
+            b
+        };
+        let s = [0, 1, 2].map(|k| (a[k] + b[k]).clamp(-(1 << 15), 1 << 15));
+        let got = one_minus_cos(n, s);
+        let ss: f64 = s.iter().map(|&c| (c as f64).powi(2)).sum();
+        if ss == 0.0 {
+            assert_eq!(got, None);
+            continue;
+        }
+        let nf = n.map(f64::from);
+        let dot: f64 = (0..3).map(|k| nf[k] * s[k] as f64).sum();
+        let nn: f64 = nf.iter().map(|c| c * c).sum();
+        let want = (1.0 - dot / (nn.sqrt() * ss.sqrt())) * 2f64.powi(28);
+        let k = (ss as u32).leading_zeros() & !1;
+        let bound = if ss >= 2f64.powi(28) {
+            32.0
+        } else {
+            2f64.powi(k as i32 / 2) + 32.0
+        };
+        let err = (got.expect("s is not zero") as f64 - want.clamp(0.0, 2f64.powi(29))).abs();
+        assert!(err <= bound, "n {n:?} s {s:?}: {got:?} against {want}");
+        if ss >= 2f64.powi(28) {
+            worst = worst.max(err);
+        }
+        cases += 1;
+    }
+    println!("{cases} cases, worst {worst} units of 2^-28 where |s| >= 1/2");
+    // Any I2F14 vectors: the ends of the components, far from unit length.
+    let ends = [-(1 << 14), -1, 0, 1, 1 << 14];
+    for &x in &ends {
+        for &y in &ends {
+            for &z in &ends {
+                for s in [[1 << 15; 3], [-(1 << 15), 1 << 15, 0], [1, 0, 0], [x, y, z]] {
+                    if let Some(d) = one_minus_cos([x, y, z], s) {
+                        assert!(d <= 1 << 29);
+                    }
+                }
+            }
         }
     }
 }
