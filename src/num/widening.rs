@@ -132,14 +132,28 @@ pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
     (((ah * b) as i64) << 16) + (al * b) as i64
 }
 
-/// `⌊a·b / 2³²⌋` or one less, from three 16 × 16 → 32-bit products (a
-/// 64-bit multiply is a library call on thumbv6m).
+/// `⌊(a·b − aₗbₗ) / 2³²⌋` (`aₗ`, `bₗ` the low halves): `⌊a·b / 2³²⌋` or
+/// one less, the same value on every core. Where a 64-bit product is a
+/// library call (thumbv6m), from three 16 × 16 → 32-bit products; else
+/// from the 64-bit one.
 ///
 /// The low × low product is left out: it is below 2³², so it can only carry
 /// 1 into the high word. (The exact four-product form is also what LLVM
 /// recognises and turns back into a call to `__aeabi_lmul`.)
 #[inline(always)]
 pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
+    if platform::SOFT_MUL64 {
+        mul_hi32_limbs(a, b)
+    } else {
+        // The same value: `a·b − aₗbₗ = aₕbₕ·2³² + (aₕbₗ + aₗbₕ)·2¹⁶`, whose
+        // floor by 2³² the limbs below sum.
+        ((a as u64 * b as u64 - (a & 0xFFFF) as u64 * (b & 0xFFFF) as u64) >> 32) as u32
+    }
+}
+
+/// [`mul_hi32`] from 16-bit halves.
+#[inline(always)]
+pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     // Each factor < 2^16, so each product < 2^32.
@@ -155,8 +169,8 @@ pub(crate) fn mul_hi32(a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{
-        mul_hi32, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs, mul_i32_u32_shr31_limbs,
-        mul_u32_limbs,
+        mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs,
+        mul_i32_u32_shr31_limbs, mul_u32_limbs,
     };
     use crate::tests::xorshift;
 
@@ -205,6 +219,7 @@ mod tests {
                 let h = mul_hi32(a as u32, b as u32);
                 let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
                 assert!(h == exact || h + 1 == exact, "{a} {b}");
+                assert_eq!(mul_hi32_limbs(a as u32, b as u32), h, "{a} {b}");
                 assert_eq!(
                     mul_i32_u32_limbs(a32, b as u32),
                     a32 as i64 * (b as u32) as i64
