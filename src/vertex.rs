@@ -204,8 +204,9 @@ impl Rows {
         w >= 1 << 36 && z > (w + (1 << 18) - 1) >> 18 && z < w && band(x) && band(y)
     }
 
-    /// `⌊V/2¹⁴⌋` of the four rows at position `q` (four calls: `[T;
-    /// N]::map` is not inlined on ARMv6-M, a call a vertex).
+    /// `⌊V/2¹⁴⌋` of the four rows at position `q`, a row a pass of a loop
+    /// kept rolled (`[T; N]::map` is not inlined on ARMv6-M: a call a
+    /// vertex; unrolled, the four rows' coefficients spill).
     #[inline(always)]
     fn fourteen(&self, q: [i16; 3]) -> [i32; 4] {
         let mut out = [0; 4];
