@@ -116,11 +116,11 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         {
             return Err(RenderError::SceneTooSmall);
         }
+        let normal_m =
+            Stage::<S, V, L>::normal_matrix(&self.modelview).ok_or(RenderError::DegenerateModel)?;
         let (origin, rect) = rect_of((w, h));
-        let stage = Stage::new(&self.lighting, mesh, &self.modelview, &proj, w, h)
-            .ok_or(RenderError::DegenerateModel)?;
         Ok(Some(Frame {
-            stage,
+            stage: Stage::new(&self.lighting, mesh, &self.modelview, normal_m, &proj, w, h),
             options: self.options,
             size: (w, h),
             origin,

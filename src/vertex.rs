@@ -603,30 +603,37 @@ pub(crate) struct Stage<'a, 'm, S: Specular, V: Viewer, L: LightSet> {
 }
 
 impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
-    /// The stage for `mesh` drawn with `modelview` (without the box),
-    /// projection `p`, on a `w × h` viewport; `None` where a light reads
-    /// normals and `modelview` has no normal matrix.
+    /// The matrix that takes `mesh`'s normals to eye space for
+    /// `modelview`: made only where a light reads normals (zeros
+    /// otherwise), `None` where `modelview` has none.
+    pub(crate) fn normal_matrix(modelview: &Mat4) -> Option<[[i16; 3]; 3]> {
+        if <L::Prepared as PreparedLights>::EMPTY {
+            Some([[0; 3]; 3])
+        } else {
+            normal_matrix(modelview)
+        }
+    }
+
+    /// The stage for `mesh` drawn with `modelview` (without the box) and
+    /// its [`Stage::normal_matrix`] `normal_m`, projection `p`, on a `w ×
+    /// h` viewport.
     pub(crate) fn new(
         lighting: &'a Lighting<S, V, L>,
         mesh: &'a Mesh<'m>,
         modelview: &Mat4,
+        normal_m: [[i16; 3]; 3],
         p: &ProjectionCoeffs,
         w: u32,
         h: u32,
-    ) -> Option<Self> {
+    ) -> Self {
         let folded = mesh.bounds.fold(modelview);
-        Some(Stage {
+        Stage {
             lighting,
             mesh,
             modelview: folded,
-            // Made only where a light reads normals.
-            normal_m: if <L::Prepared as PreparedLights>::EMPTY {
-                [[0; 3]; 3]
-            } else {
-                normal_matrix(modelview)?
-            },
+            normal_m,
             rows: Rows::new(&folded, p, w, h),
-        })
+        }
     }
 
     /// Mesh vertex `i`'s position (`i` below the vertex count).
