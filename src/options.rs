@@ -208,7 +208,8 @@ pub enum RenderError<E> {
     /// more than about 1/512 px. Express it in smaller units (larger
     /// numbers), nearer the world's origin.
     SceneTooSmall,
-    /// A light reads the mesh's normals, and the model-view matrix has no
+    /// The scene has lights (they read normals, in every shading mode),
+    /// and the model-view matrix has no
     /// [`normal_matrix`](crate::vector::normal_matrix): it is singular at
     /// its entries' precision, or scales one direction more than about
     /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another.

@@ -218,8 +218,8 @@ pub struct Shaded<'a, 'm, R, D = NoDepth, C = Recomputed> {
 
 impl<'a, 'm, R, D, C> Shaded<'a, 'm, R, D, C> {
     /// The model matrix, object to world space (default: the identity).
-    /// Where a light reads the mesh's normals, a singular one, or one that
-    /// scales a direction more than about
+    /// Where the scene has lights (they read normals, in every shading
+    /// mode), a singular one, or one that scales a direction more than about
     /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another,
     /// is refused ([`RenderError::DegenerateModel`](crate::render::RenderError::DegenerateModel)):
     /// the normals would have no direction. Without lights it draws.
