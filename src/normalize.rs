@@ -67,7 +67,7 @@
 //! (callers that want the [`Unit3::ZERO`] convention write
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
-use crate::num::widening::{mul_hi32, mul_i32_u32_shr31};
+use crate::num::widening::{mul_hi32, mul_i32_u32_shr31, mul_u32_shr12, sum_sq3_shr10};
 use crate::platform;
 use crate::vector::{Unit3, UNIT_ONE};
 
@@ -136,27 +136,19 @@ pub(crate) fn rsqrt_q(x: u32) -> u32 {
 fn unit_core(b: [u32; 3], neg: [bool; 3]) -> Unit3 {
     // |b|² = Σ (b·h)·2^10 + b·l with h = b >> 10 ≤ 2^10 and l < 2^10:
     // each b·h ≤ 2^30 and each b·l < 2^30, so both sums are < 3·2^30.
-    let mut hi = 0u32;
-    let mut lo = 0u32;
-    for &bi in &b {
-        hi += bi * (bi >> 10);
-        lo += bi * (bi & 0x3FF);
-    }
     // S = ⌊|b|²/2^10⌋ exactly. |b|² ≥ 2^38 (largest b ≥ 2^19), so S ≥ 2^28;
     // S < 3·2^30 + 3·2^20 < 2^32.
-    let s = hi + (lo >> 10);
+    let s = sum_sq3_shr10(b);
     // Bring S into [2^30, 2^32) by an even shift; `half` records that the
     // root of the shifted value is twice the root of S.
     let (s, half) = if s < 1 << 30 { (s << 2, 1) } else { (s, 0) };
     // |b| = √(S·2^10) = √(X·2^32)·2^(5 − half) = √X·2^(21 − half), so
     // 2^14·b/|b| = b·Y·2^(half − 7) with Y = y/2^30 ≈ 1/√X.
     let y = rsqrt_q(s) >> 8; // Y in Q.22, ≤ 2^23
-    let (yh, yl) = (y >> 12, y & 0xFFF); // yh ≤ 2^11, yl < 2^12
     let mut out = [0i16; 3];
     for k in 0..3 {
-        let bi = b[k];
-        // b ≤ 2^20: b·yh ≤ 2^31, b·yl < 2^32, t < 2^31 + 2^20. t = ⌊b·y/2^12⌋.
-        let t = bi * yh + ((bi * yl) >> 12);
+        // b ≤ 2^20, y ≤ 2^23: t = ⌊b·y/2^12⌋ < 2^31 + 2^20.
+        let t = mul_u32_shr12(b[k], y);
         // 2^14·b/|b| = t·2^(half − 17), rounded to nearest; t + 2^16 < 2^32.
         let sh = 17 - half;
         let r = (t + (1 << (sh - 1))) >> sh;

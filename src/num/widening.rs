@@ -132,6 +132,39 @@ pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
     (((ah * b) as i64) << 16) + (al * b) as i64
 }
 
+/// `⌊(b₀² + b₁² + b₂²) / 2¹⁰⌋` for `bᵢ ≤ 2²⁰` (below 2³²), exactly:
+/// where a 64-bit product is a library call, from 10-bit halves, `bᵢ² =
+/// (bᵢ·hᵢ)·2¹⁰ + bᵢ·lᵢ` with `hᵢ = bᵢ >> 10 ≤ 2¹⁰` and `lᵢ < 2¹⁰`, so each
+/// sum of three products stays below 3·2³⁰ (`u32`); else from the 64-bit
+/// sum of squares.
+#[inline(always)]
+pub(crate) fn sum_sq3_shr10(b: [u32; 3]) -> u32 {
+    if platform::SOFT_MUL64 {
+        let mut hi = 0u32;
+        let mut lo = 0u32;
+        for &bi in &b {
+            hi += bi * (bi >> 10);
+            lo += bi * (bi & 0x3FF);
+        }
+        hi + (lo >> 10)
+    } else {
+        let s: u64 = b.iter().map(|&bi| bi as u64 * bi as u64).sum();
+        (s >> 10) as u32
+    }
+}
+
+/// `⌊a·y / 2¹²⌋` for `a ≤ 2²⁰` and `y < 2²⁴` (below 2³²), exactly: from
+/// `y`'s 12-bit halves (`a·yₕ ≤ 2³²`, `a·yₗ < 2³²`) where a 64-bit product
+/// is a library call, else from the 64-bit product.
+#[inline(always)]
+pub(crate) fn mul_u32_shr12(a: u32, y: u32) -> u32 {
+    if platform::SOFT_MUL64 {
+        a * (y >> 12) + ((a * (y & 0xFFF)) >> 12)
+    } else {
+        ((a as u64 * y as u64) >> 12) as u32
+    }
+}
+
 /// `⌊(a·b − aₗbₗ) / 2³²⌋` (`aₗ`, `bₗ` the low halves): `⌊a·b / 2³²⌋` or
 /// one less, the same value on every core. Where a 64-bit product is a
 /// library call (thumbv6m), from three 16 × 16 → 32-bit products; else
@@ -170,7 +203,7 @@ pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
 mod tests {
     use super::{
         mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs,
-        mul_i32_u32_shr31_limbs, mul_u32_limbs,
+        mul_i32_u32_shr31_limbs, mul_u32_limbs, mul_u32_shr12, sum_sq3_shr10,
     };
     use crate::tests::xorshift;
 
@@ -190,6 +223,37 @@ mod tests {
         // Magnitudes from 1 bit to 64.
         let random = (0..20_000).map(move |i| next() >> (i % 64));
         edges.chain(random)
+    }
+
+    /// The squares' sum and the 12-bit product take the same values in
+    /// both forms, over their operands' ranges and at their ends.
+    #[test]
+    fn normalisation_products_agree() {
+        let mut next = xorshift(0x2545_F491_4F6C_DD1D);
+        let ends = [0u32, 1, 0x3FF, 0x400, (1 << 19) + 1, 1 << 20];
+        for i in 0..200_000 {
+            let b = [0, 1, 2].map(|k| {
+                if i % 7 == 0 {
+                    ends[(i / 7 + k) % ends.len()]
+                } else {
+                    (next() % ((1 << 20) + 1)) as u32
+                }
+            });
+            let s: u64 = b.iter().map(|&x| x as u64 * x as u64).sum();
+            // The limb form's ranges as the function's own (debug builds
+            // check each sum).
+            let (mut hi, mut lo) = (0u32, 0u32);
+            for &bi in &b {
+                hi += bi * (bi >> 10);
+                lo += bi * (bi & 0x3FF);
+            }
+            assert_eq!((hi + (lo >> 10)) as u64, s >> 10);
+            assert_eq!(sum_sq3_shr10(b) as u64, s >> 10);
+            let y = (next() % (1 << 24)) as u32;
+            let want = (b[0] as u64 * y as u64) >> 12;
+            assert_eq!(b[0] * (y >> 12) + ((b[0] * (y & 0xFFF)) >> 12), want as u32);
+            assert_eq!(mul_u32_shr12(b[0], y) as u64, want);
+        }
     }
 
     #[test]
