@@ -28,6 +28,7 @@ use crate::color::Rgb;
 use crate::light_term::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
 use crate::material::Specular;
 use crate::normalize::{normalize, normalize_len};
+use crate::num::widening::mul_i32_i16;
 use crate::num::{clamp_wide, step_wide, MiniFloat, WidePoint};
 use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{FormatError, Mat4, Unit3, COORD_FRAC};
@@ -868,10 +869,11 @@ fn light_vector(v: [i64; 3]) -> Option<(Unit3, u64)> {
     if !fits {
         return normalize_len(v);
     }
-    let l = normalize([v[0] as i32, v[1] as i32, v[2] as i32])?;
+    let w = [v[0] as i32, v[1] as i32, v[2] as i32];
+    let l = normalize(w)?;
     let b = l.to_bits();
     // |v_i| < 2^31, |l_i| ≤ 2^14: each product below 2^45.
-    let dot = v[0] * b[0] as i64 + v[1] * b[1] as i64 + v[2] * b[2] as i64;
+    let dot = mul_i32_i16(w[0], b[0]) + mul_i32_i16(w[1], b[1]) + mul_i32_i16(w[2], b[2]);
     Some((l, (dot.max(0) >> 14) as u64))
 }
 

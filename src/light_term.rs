@@ -42,9 +42,20 @@ pub const FACTOR_ONE: u32 = 1 << 15;
 pub struct Gain {
     mant: u16,
     sh: u8,
+    /// `2^sh / 2` (0 for `sh = 0`), the rounding [`Gain::apply`] adds.
+    half: u32,
 }
 
 impl Gain {
+    /// The gain `mant / 2^(sh + 1)` (`sh ≤ 31`).
+    const fn new(mant: u16, sh: u32) -> Gain {
+        Gain {
+            mant,
+            sh: sh as u8,
+            half: (1u32 << sh) >> 1,
+        }
+    }
+
     /// The gain of two `U16F16` values' product, given as the exact `Q.32`
     /// product (`u64`).
     ///
@@ -58,7 +69,7 @@ impl Gain {
     pub const fn from_q32(p: u64) -> Gain {
         let p = if p > (256u64 << 32) { 256u64 << 32 } else { p };
         if p == 0 {
-            return Gain { mant: 0, sh: 0 };
+            return Gain::new(0, 0);
         }
         // bits ∈ [1, 41] since p ≤ 2^40.
         let bits = 64 - p.leading_zeros();
@@ -73,15 +84,9 @@ impl Gain {
         if m >= 1 << 16 {
             // Rounding carried into bit 16: halve (exact, m = 2^16) with one
             // shift less. sh ≥ 6 here because bits ≤ 41.
-            Gain {
-                mant: (m >> 1) as u16,
-                sh: (sh - 1) as u8,
-            }
+            Gain::new((m >> 1) as u16, sh - 1)
         } else {
-            Gain {
-                mant: m as u16,
-                sh: sh as u8,
-            }
+            Gain::new(m as u16, sh)
         }
     }
 
@@ -124,7 +129,7 @@ impl Gain {
     /// at most `2³⁰` (`sh ≤ 31`), so the sum stays below `2³²`.
     #[inline(always)]
     pub(crate) const fn apply_in_range(self, x: u32) -> u32 {
-        (self.mant as u32 * x + ((1u32 << self.sh) >> 1)) >> self.sh
+        (self.mant as u32 * x + self.half) >> self.sh
     }
 
     /// The gain's value as exact rational parts: `(mant, 2^(sh + 1))`,
