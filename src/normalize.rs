@@ -1,5 +1,7 @@
 //! Normalisation without floats: unit vectors (and lengths) from integer
-//! vectors, by a table-seeded reciprocal square root and one Newton step.
+//! vectors, and the cosine of the angle between two ([`one_minus_cos`],
+//! Blinn's `1 − N·H`), by a table-seeded reciprocal square root and one
+//! Newton step.
 //!
 //! # Method
 //!
@@ -47,7 +49,7 @@
 //!
 //! # Cost
 //!
-//! [`normalize`] (the per-pixel path): 18 multiplies, all 32 × 32 → 32
+//! [`normalize`] (the per-pixel path) on ARMv6-M: 18 multiplies, all 32 × 32 → 32
 //! (one `MULS` each on a Cortex-M0), two table reads, one `leading_zeros`
 //! (a short compiler-builtins routine on thumbv6m, which has no `CLZ`), no
 //! division, no 64-bit arithmetic. [`rsqrt_q`] alone is 6 multiplies and two
@@ -169,7 +171,9 @@ fn unit_core(b: [u32; 3], neg: [bool; 3]) -> Unit3 {
 ///
 /// Components are rounded to nearest `I2F14`, within 0.54 ULP (0.514 measured) of the exact
 /// `v_i/|v|` (see the module docs), and `normalize(−v) == −normalize(v)`
-/// whenever `−v` is representable. Only 32-bit multiplies (18 of them).
+/// whenever `−v` is representable. On ARMv6-M only 32-bit multiplies
+/// (18 of them); where the core has a 64-bit product, its squares and
+/// its three final products take it (the same values).
 #[inline]
 pub(crate) fn normalize(v: [i32; 3]) -> Option<Unit3> {
     let a = v.map(i32::unsigned_abs); // each ≤ 2^31

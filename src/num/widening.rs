@@ -140,17 +140,23 @@ pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
 #[inline(always)]
 pub(crate) fn sum_sq3_shr10(b: [u32; 3]) -> u32 {
     if platform::SOFT_MUL64 {
-        let mut hi = 0u32;
-        let mut lo = 0u32;
-        for &bi in &b {
-            hi += bi * (bi >> 10);
-            lo += bi * (bi & 0x3FF);
-        }
-        hi + (lo >> 10)
+        sum_sq3_shr10_limbs(b)
     } else {
         let s: u64 = b.iter().map(|&bi| bi as u64 * bi as u64).sum();
         (s >> 10) as u32
     }
+}
+
+/// [`sum_sq3_shr10`] from 10-bit halves.
+#[inline(always)]
+pub(crate) fn sum_sq3_shr10_limbs(b: [u32; 3]) -> u32 {
+    let mut hi = 0u32;
+    let mut lo = 0u32;
+    for &bi in &b {
+        hi += bi * (bi >> 10);
+        lo += bi * (bi & 0x3FF);
+    }
+    hi + (lo >> 10)
 }
 
 /// `⌊a·y / 2¹²⌋` for `a ≤ 2²⁰` and `y < 2²⁴` (below 2³²), exactly: from
@@ -159,10 +165,16 @@ pub(crate) fn sum_sq3_shr10(b: [u32; 3]) -> u32 {
 #[inline(always)]
 pub(crate) fn mul_u32_shr12(a: u32, y: u32) -> u32 {
     if platform::SOFT_MUL64 {
-        a * (y >> 12) + ((a * (y & 0xFFF)) >> 12)
+        mul_u32_shr12_limbs(a, y)
     } else {
         ((a as u64 * y as u64) >> 12) as u32
     }
+}
+
+/// [`mul_u32_shr12`] from `y`'s 12-bit halves.
+#[inline(always)]
+pub(crate) fn mul_u32_shr12_limbs(a: u32, y: u32) -> u32 {
+    a * (y >> 12) + ((a * (y & 0xFFF)) >> 12)
 }
 
 /// `⌊(a·b − aₗbₗ) / 2³²⌋` (`aₗ`, `bₗ` the low halves): `⌊a·b / 2³²⌋` or
@@ -203,7 +215,8 @@ pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
 mod tests {
     use super::{
         mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs,
-        mul_i32_u32_shr31_limbs, mul_u32_limbs, mul_u32_shr12, sum_sq3_shr10,
+        mul_i32_u32_shr31_limbs, mul_u32_limbs, mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10,
+        sum_sq3_shr10_limbs,
     };
     use crate::tests::xorshift;
 
@@ -240,18 +253,12 @@ mod tests {
                 }
             });
             let s: u64 = b.iter().map(|&x| x as u64 * x as u64).sum();
-            // The limb form's ranges as the function's own (debug builds
-            // check each sum).
-            let (mut hi, mut lo) = (0u32, 0u32);
-            for &bi in &b {
-                hi += bi * (bi >> 10);
-                lo += bi * (bi & 0x3FF);
-            }
-            assert_eq!((hi + (lo >> 10)) as u64, s >> 10);
+            // Debug builds check each of the limb forms' sums.
+            assert_eq!(sum_sq3_shr10_limbs(b) as u64, s >> 10);
             assert_eq!(sum_sq3_shr10(b) as u64, s >> 10);
             let y = (next() % (1 << 24)) as u32;
             let want = (b[0] as u64 * y as u64) >> 12;
-            assert_eq!(b[0] * (y >> 12) + ((b[0] * (y & 0xFFF)) >> 12), want as u32);
+            assert_eq!(mul_u32_shr12_limbs(b[0], y) as u64, want);
             assert_eq!(mul_u32_shr12(b[0], y) as u64, want);
         }
     }
