@@ -28,6 +28,7 @@ use crate::color::Rgb;
 use crate::light_term::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
 use crate::material::Specular;
 use crate::normalize::{normalize, normalize_len};
+use crate::num::division::quotient_u32;
 use crate::num::widening::mul_i32_i16;
 use crate::num::{clamp_wide, step_wide, MiniFloat, WidePoint};
 use crate::specular_table::{pow_from_delta, Exponent};
@@ -329,10 +330,14 @@ impl Falloff for Attenuation {
         // Exponents: c1, c2 ∈ [−63, 0] (frac 32), d ∈ [−55, 8],
         // c1·d ∈ [−87, 40], c2·d·d ∈ [−111, 80]: far inside MiniFloat's
         // range, so the clamps of `from_u64` and `mul` are left out here.
-        let d = MiniFloat::from_u64_small_frac(d_q24, COORD_FRAC as i32);
-        let den =
+        let den = if p.c1 == MiniFloat::ZERO && p.c2 == MiniFloat::ZERO {
+            // A constant factor (a spot light's, often): no distance.
+            p.c0
+        } else {
+            let d = MiniFloat::from_u64_small_frac(d_q24, COORD_FRAC as i32);
             p.c0.saturating_add(p.c1.mul_in_range(d).to_q32_saturating())
-                .saturating_add(p.c2.mul_in_range(d).mul_in_range(d).to_q32_saturating());
+                .saturating_add(p.c2.mul_in_range(d).mul_in_range(d).to_q32_saturating())
+        };
         if den <= 1 << 32 {
             // den ≤ 1 (including den = 0): f = 1.
             return FACTOR_ONE;
@@ -344,7 +349,7 @@ impl Falloff for Attenuation {
         // f = 2^32/den in Q.15 = 2^31 / (den >> 16); den >> 16 ∈ (2^16, 2^32)
         // keeps 17+ significant bits. 2^31 + den16/2 < 2^32: no overflow.
         let den16 = (den >> 16) as u32;
-        ((1u32 << 31) + den16 / 2) / den16
+        quotient_u32((1u32 << 31) + den16 / 2, den16)
     }
 }
 

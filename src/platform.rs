@@ -57,7 +57,7 @@ pub(crate) const fn little_endian() -> bool {
 /// about 30 instructions: there, three inline halving steps and a table
 /// of the top nibble's.
 #[inline(always)]
-pub(crate) fn leading_zeros(x: u32) -> u32 {
+pub(crate) const fn leading_zeros(x: u32) -> u32 {
     if SOFT_MUL64 {
         leading_zeros_halving(x)
     } else {
@@ -68,7 +68,7 @@ pub(crate) fn leading_zeros(x: u32) -> u32 {
 /// [`leading_zeros`] in three halving steps and a table of the top
 /// nibble's.
 #[inline(always)]
-fn leading_zeros_halving(x: u32) -> u32 {
+const fn leading_zeros_halving(x: u32) -> u32 {
     /// Leading zeros of a nibble (`NIBBLE[0]` unused: the top nibble is
     /// not 0 once the steps are done, `x` being non-zero).
     const NIBBLE: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
@@ -76,11 +76,14 @@ fn leading_zeros_halving(x: u32) -> u32 {
         return 32;
     }
     let (mut x, mut n) = (x, 0);
-    for k in [16, 8, 4] {
+    // 16, 8, 4 (a `while`, as a `const fn` takes no `for`).
+    let mut k = 16;
+    while k >= 4 {
         if x >> (32 - k) == 0 {
             n += k;
             x <<= k;
         }
+        k >>= 1;
     }
     n + NIBBLE[(x >> 28) as usize] as u32
 }

@@ -154,6 +154,39 @@ impl Divisor {
     }
 }
 
+/// `⌊n/d⌋` for `d ≥ 2¹⁶` (a quotient of at most 2¹⁶): the core's
+/// division where it has one, else [`recip_fast`]'s reciprocal of `d·2ˢ ∈
+/// [2³¹, 2³²)` and a correction; the same value on every core.
+///
+/// `q = ⌊⌊n·r/2³²⌋/2³¹⁻ˢ⌋` ([`mul_hi32`], which may be one short) is
+/// within `n/d·2⁻²⁷ ≤ 2⁻¹¹` of `n/d` above (`r` within a relative 2⁻²⁷)
+/// and within 2 below, so `q − 1` is at most `⌊n/d⌋`: its product with
+/// `d` is at most `n` (no overflow), and the remainder is stepped down
+/// into `[0, d)`, a few steps at most.
+#[inline(always)]
+pub(crate) fn quotient_u32(n: u32, d: u32) -> u32 {
+    debug_assert!(d >= 1 << 16);
+    if platform::hardware_div32() {
+        n / d
+    } else {
+        quotient_u32_by_reciprocal(n, d)
+    }
+}
+
+/// [`quotient_u32`] without a division.
+#[inline(always)]
+fn quotient_u32_by_reciprocal(n: u32, d: u32) -> u32 {
+    let s = platform::leading_zeros(d);
+    let r = recip_fast(d << s);
+    let mut q = (mul_hi32(n, r) >> (31 - s)).saturating_sub(1);
+    let mut rem = n - q * d;
+    while rem >= d {
+        q += 1;
+        rem -= d;
+    }
+    q
+}
+
 /// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁵` (`k = 0..=64`), floored; the
 /// first (2³²) capped to `u32::MAX`. 260 bytes, computed by the compiler.
 const RECIP_NODES: [u32; 65] = {
@@ -271,6 +304,37 @@ mod tests {
                 if n != i32::MIN {
                     assert_eq!(v.ceil(n) as i64, -((-(n as i64)).div_euclid(d as i64)));
                 }
+            }
+        }
+    }
+
+    /// The reciprocal form of [`quotient_u32`] is the division: divisors
+    /// from 2¹⁶ up (powers of two and their neighbours, random ones),
+    /// numerators at both ends and around the divisor's multiples.
+    #[test]
+    fn quotient_u32_is_the_division() {
+        let mut next = xorshift(0x6a09_e667_f3bc_c909);
+        let mut divisors: Vec<u32> = vec![1 << 16, (1 << 16) + 1, u32::MAX, 1 << 31, (1 << 31) - 1];
+        for k in 16..32 {
+            divisors.extend([(1u32 << k) - 1, 1 << k, (1 << k) + 1]);
+        }
+        for _ in 0..20_000 {
+            divisors.push(((next() >> 32) as u32).max(1 << 16));
+        }
+        for &d in &divisors {
+            let mut numerators = vec![0, 1, u32::MAX, u32::MAX - 1, d - 1, d];
+            for _ in 0..20 {
+                let m = (next() >> 48) as u32 % (u32::MAX / d + 1);
+                let n = m.wrapping_mul(d);
+                numerators.extend([
+                    n,
+                    n.wrapping_sub(1),
+                    n.wrapping_add(1),
+                    (next() >> 32) as u32,
+                ]);
+            }
+            for n in numerators {
+                assert_eq!(super::quotient_u32_by_reciprocal(n, d), n / d, "{n} / {d}");
             }
         }
     }

@@ -1,6 +1,9 @@
 //! A small unsigned floating-point format for products whose magnitudes
 //! span more than any one fixed-point format holds.
 
+use crate::num::widening::mul_u32;
+use crate::platform;
+
 /// A small unsigned float for the attenuation polynomial, whose terms span
 /// 10⁻¹² to 10²⁰: value = `m · 2^e`, `m` normalised to [2³¹, 2³²) or 0.
 ///
@@ -126,13 +129,27 @@ impl MiniFloat {
 
     /// The top 32 significant bits of `v` (0 for `v = 0`) and its leading
     /// zeros (in [0, 63] for `v ≠ 0`).
+    ///
+    /// From `v`'s 32-bit halves: a 64-bit variable shift and leading-zero
+    /// count are library calls on ARMv6-M.
     #[inline(always)]
     const fn normalise(v: u64) -> (u32, i32) {
-        if v == 0 {
-            return (0, 0);
+        let (hi, lo) = ((v >> 32) as u32, v as u32);
+        if hi != 0 {
+            let lz = platform::leading_zeros(hi);
+            // lz ≤ 31: the top 32 bits of `v << lz`.
+            let m = if lz == 0 {
+                hi
+            } else {
+                (hi << lz) | (lo >> (32 - lz))
+            };
+            (m, lz as i32)
+        } else if lo != 0 {
+            let lz = platform::leading_zeros(lo);
+            (lo << lz, 32 + lz as i32)
+        } else {
+            (0, 0)
         }
-        let lz = v.leading_zeros();
-        (((v << lz) >> 32) as u32, lz as i32)
     }
 
     /// The product, truncated to 32 significant bits (one 32 × 32 → 64
@@ -170,7 +187,7 @@ impl MiniFloat {
         if self.m == 0 || o.m == 0 {
             return (0, 0);
         }
-        let p = self.m as u64 * o.m as u64; // in [2^62, 2^64)
+        let p = mul_u32(self.m, o.m); // in [2^62, 2^64)
         if p >> 63 == 1 {
             ((p >> 32) as u32, self.e + o.e + 32)
         } else {
@@ -192,15 +209,20 @@ impl MiniFloat {
         if self.m == 0 {
             return 0;
         }
-        // e ≤ E_MAX = 2^29: no overflow.
-        let s = self.e + 32;
+        // e ≤ E_MAX = 2^29: no overflow. The shifts on 32-bit halves (a
+        // 64-bit variable shift is a library call on ARMv6-M).
+        let (m, s) = (self.m, self.e + 32);
         if s > 32 {
             u64::MAX
-        } else if s >= 0 {
-            (self.m as u64) << s
-        } else if s > -64 {
-            (self.m as u64) >> (-s)
+        } else if s == 32 {
+            (m as u64) << 32
+        } else if s > 0 {
+            // m·2ˢ: its high half m >> (32 − s), its low half m << s.
+            (((m >> (32 - s)) as u64) << 32) | (m << s) as u64
+        } else if s > -32 {
+            (m >> (-s)) as u64
         } else {
+            // m < 2³²: 0 once shifted right by 32 or more.
             0
         }
     }

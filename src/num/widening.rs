@@ -25,7 +25,7 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
 
 /// `a · b`, exactly (below 2⁶⁴).
 #[inline(always)]
-pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
+pub(crate) const fn mul_u32(a: u32, b: u32) -> u64 {
     if platform::SOFT_MUL64 {
         mul_u32_limbs(a, b)
     } else {
@@ -103,7 +103,7 @@ pub(crate) fn mul_i32_limbs(a: i32, b: i32) -> i64 {
 /// [`mul_u32`] from 16-bit halves: `aₗbₗ + (aₕbₗ + aₗbₕ)·2¹⁶ + aₕbₕ·2³²`,
 /// each partial product below 2³², the middle sum's carry kept.
 #[inline(always)]
-pub(crate) fn mul_u32_limbs(a: u32, b: u32) -> u64 {
+pub(crate) const fn mul_u32_limbs(a: u32, b: u32) -> u64 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let (mid, carry) = (ah * bl).overflowing_add(al * bh);
