@@ -256,12 +256,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             let rel = |j: usize| ((e[k][j] - origin[j]) >> shift) as i32;
             [0, n[k][0], n[k][1], n[k][2], rel(0), rel(1), rel(2)]
         });
-        let sh = span::Phong {
-            lighting: self.stage.lighting,
-            origin,
-            shift,
-            dither: self.options.dither,
-        };
+        let sh = span::Phong::new(self.stage.lighting, origin, shift, self.options.dither);
         (a, sh)
     }
 

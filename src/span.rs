@@ -326,10 +326,33 @@ impl Shader<1> for Flat {
 /// Phong shading: attributes 1–3 the normal, 4–6 the eye position
 /// relative to `origin` and shifted right by `shift` (`src/shade.rs`).
 pub(crate) struct Phong<'l, S: Specular, V: Viewer, L: LightSet> {
-    pub(crate) lighting: &'l Lighting<S, V, L>,
-    pub(crate) origin: [i64; 3],
-    pub(crate) shift: u32,
-    pub(crate) dither: bool,
+    lighting: &'l Lighting<S, V, L>,
+    origin: [i64; 3],
+    shift: u32,
+    /// `origin` where it fits `i32` and `shift` is 0 (a triangle within a
+    /// unit of the world, near the eye: the usual one): the position is
+    /// then an `i32` sum, saturating as the clamp of the `i64` one.
+    near: Option<[i32; 3]>,
+    dither: bool,
+}
+
+impl<'l, S: Specular, V: Viewer, L: LightSet> Phong<'l, S, V, L> {
+    /// The shader of positions `origin + (a >> 4) << shift`.
+    pub(crate) fn new(
+        lighting: &'l Lighting<S, V, L>,
+        origin: [i64; 3],
+        shift: u32,
+        dither: bool,
+    ) -> Self {
+        let fits = origin.iter().all(|&o| i32::try_from(o).is_ok());
+        Phong {
+            lighting,
+            origin,
+            shift,
+            near: (fits && shift == 0).then(|| origin.map(|o| o as i32)),
+            dither,
+        }
+    }
 }
 
 impl<S: Specular, V: Viewer, L: LightSet> Shader<7> for Phong<'_, S, V, L> {
@@ -339,10 +362,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Shader<7> for Phong<'_, S, V, L> {
         // range (`src/setup.rs`): the normal's between unit vectors (any
         // scale normalises), the position's between the corners'.
         let n = normalize([a[1], a[2], a[3]]).unwrap_or(Unit3::ZERO);
-        let p = [4, 5, 6].map(|k| {
-            let v = (((a[k] >> 4) as i64) << self.shift) + self.origin[k - 4];
-            v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
-        });
+        let p = match self.near {
+            Some(o) => [4, 5, 6].map(|k| (a[k] >> 4).saturating_add(o[k - 4])),
+            None => [4, 5, 6].map(|k| {
+                let v = (((a[k] >> 4) as i64) << self.shift) + self.origin[k - 4];
+                v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+            }),
+        };
         let shade = self.lighting.shade(Vec3::from_bits(p[0], p[1], p[2]), n);
         if self.dither {
             dither_shade(shade, x, y)
