@@ -43,6 +43,13 @@ pub(crate) const fn hardware_div32() -> bool {
     !cfg!(fixshade_soft_div32)
 }
 
+/// Whether a triangle of a few samples tests each against its edge
+/// functions rather than walking its edges (`src/setup.rs`): where the
+/// core divides in software, the three edges' quotients cost more than a
+/// handful of samples' tests; where it divides in hardware, less. Both
+/// give the same spans.
+pub(crate) const TEST_SAMPLES: bool = !hardware_div32();
+
 /// The target stores integers little-endian, the byte order of the mesh
 /// layout: where this holds, a mesh's arrays are read in place as `i16` and
 /// `u16` values.

@@ -1,6 +1,7 @@
 //! Triangle set-up in 32-bit arithmetic: the rows and columns a triangle
-//! covers, its edges and its attribute planes, ready for the row walk
-//! (`src/walk.rs`).
+//! covers, its edges and its attribute planes, and its rows' spans from
+//! the row walk (`src/walk.rs`), or, for a triangle of a few samples where
+//! the core divides in software, from each sample's edge functions.
 //!
 //! # Ranges
 //! Window positions are in 1/16 pixel from the set-up's origin, within
@@ -38,9 +39,9 @@ use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
 use crate::num::widening::{mul_i32, mul_i32_i16, mul_i32_u32};
-use crate::planes::Planes;
+use crate::planes::{Planes, Row};
 use crate::platform;
-use crate::walk::{Edge, Walk};
+use crate::walk::{Edge, EdgeFunctions, Walk, CHUNK};
 
 /// Attribute values lie within `±ATTR`: their differences, below 2²⁶,
 /// times a side below 2¹⁵, stay below 2⁴¹.
@@ -78,18 +79,117 @@ pub(crate) struct Triangle<const N: usize> {
     pub(crate) walk: Walk,
 }
 
+/// What [`set_up`] made of a triangle.
+pub(crate) enum SetUp<'s, 'r, const N: usize> {
+    /// No row of the rectangle has a sample in the triangle's rows.
+    Empty,
+    /// Its planes and all its rows' spans, the first at row `y`.
+    Rows {
+        planes: &'s Planes<N>,
+        rows: &'r [Row],
+        y: i32,
+    },
+    /// Its planes and its walk, for rows past one table's or spans that
+    /// need a clamp.
+    Walk(&'s mut Triangle<N>),
+}
+
+/// The most rows and columns of samples a triangle spans whose samples
+/// [`set_up`] tests one by one ([`platform::TEST_SAMPLES`]).
+pub(crate) const SMALL: i32 = 4;
+
 /// Sets up triangle `v` of doubled area `area` (not 0) on `rect` into
-/// `slot`, or `None` where it has no sample row in `rect`'s rows. Out of
+/// `slot`: its planes, and its walk or, for a triangle of at most
+/// [`SMALL`] rows and columns of samples where the core divides in
+/// software, every row's span into `table`, each sample tested against
+/// the edge functions ([`EdgeFunctions`]) instead of walking the edges
+/// (three quotients and their steps). Both give the same spans. Out of
 /// line, into the caller's memory: the set-up's values get the registers,
 /// and the caller reads the triangle where it lies, not copied into its
 /// own.
 #[inline(never)]
-pub(crate) fn set_up<'s, const N: usize>(
+pub(crate) fn set_up<'s, 'r, const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
     rect: &Rect,
     slot: &'s mut MaybeUninit<Triangle<N>>,
-) -> Option<&'s mut Triangle<N>> {
+    table: &'r mut [MaybeUninit<Row>; CHUNK],
+) -> SetUp<'s, 'r, N> {
+    let Some(s) = samples(v, rect) else {
+        return SetUp::Empty;
+    };
+    let out = slot.as_mut_ptr();
+    // The planes into the slot as soon as they are made, attribute by
+    // attribute: they hold no register while the rest is made.
+    // SAFETY: `out` points to the slot, valid for writes; `planes` writes
+    // every entry of the planes.
+    unsafe { planes(v, area, s.rows.0, core::ptr::addr_of_mut!((*out).planes)) };
+    if platform::TEST_SAMPLES && s.rows.1 - s.rows.0 < SMALL && s.cols.1 - s.cols.0 < SMALL {
+        let at = (16 * s.cols.0 + 8, 16 * s.rows.0 + 8);
+        let e = EdgeFunctions::new(v.map(|p| (p.x, p.y)), area, at);
+        return SetUp::Rows {
+            // SAFETY: written just above.
+            planes: unsafe { &*core::ptr::addr_of!((*out).planes) },
+            rows: e.rows(s.rows, s.cols, table),
+            y: s.rows.0,
+        };
+    }
+    let w = walk(v, &s, rect);
+    // Most triangles: every row at once.
+    if let Some(rows) = w.all(table) {
+        return SetUp::Rows {
+            // SAFETY: written above.
+            planes: unsafe { &*core::ptr::addr_of!((*out).planes) },
+            rows,
+            y: w.y,
+        };
+    }
+    // SAFETY: as above; with the planes and the walk written, the slot is
+    // initialised.
+    unsafe {
+        core::ptr::addr_of_mut!((*out).walk).write(w);
+        SetUp::Walk(slot.assume_init_mut())
+    }
+}
+
+/// The samples of a triangle within a set-up's rectangle ([`samples`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Samples {
+    /// The rows whose samples lie in `[top, bottom)` (those the walk
+    /// draws), within the rectangle's.
+    pub(crate) rows: (i32, i32),
+    /// The columns whose samples lie in `[min x, max x]`, within the
+    /// rectangle's (possibly none: `cols.0 > cols.1`).
+    pub(crate) cols: (i32, i32),
+    /// Whether the rectangle cut those columns: then the walk's spans are
+    /// clamped to its columns.
+    pub(crate) clamp: bool,
+}
+
+/// The samples of triangle `v` within `rect`, or `None` where no row of
+/// `rect` has a sample in `[top, bottom)`: row `r` samples at `16r + 8`,
+/// within `[a, b)` for `r ∈ [⌈(a − 8)/16⌉, ⌈(b − 8)/16⌉ − 1]`; column `c`
+/// within `[a, b]` for `c ∈ [⌈(a − 8)/16⌉, ⌊(b − 8)/16⌋]`.
+#[inline(always)]
+pub(crate) fn samples<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<Samples> {
+    let (x, y) = (v.map(|p| p.x), v.map(|p| p.y));
+    let r0 = ((y[0].min(y[1]).min(y[2]) + 7) >> 4).max(rect.r0);
+    let r1 = (((y[0].max(y[1]).max(y[2]) + 7) >> 4) - 1).min(rect.r1);
+    if r0 > r1 {
+        return None;
+    }
+    let c0 = (x[0].min(x[1]).min(x[2]) + 7) >> 4;
+    let c1 = (x[0].max(x[1]).max(x[2]) - 8) >> 4;
+    Some(Samples {
+        rows: (r0, r1),
+        cols: (c0.max(rect.c0), c1.min(rect.c1)),
+        clamp: c0 < rect.c0 || c1 > rect.c1,
+    })
+}
+
+/// The walk of triangle `v`, whose samples are `s`, on `rect`.
+#[inline(always)]
+fn walk<const N: usize>(v: &[Vtx<N>; 3], s: &Samples, rect: &Rect) -> Walk {
     // Sorted top to bottom.
     let (mut t, mut m, mut b) = (&v[0], &v[1], &v[2]);
     if m.y < t.y {
@@ -101,23 +201,11 @@ pub(crate) fn set_up<'s, const N: usize>(
             core::mem::swap(&mut t, &mut m);
         }
     }
-    // Rows whose samples lie in [t.y, b.y): ⌈(t.y − 8)/16⌉ ..= ⌈(b.y − 8)/16⌉ − 1.
-    let r_top = ((t.y + 7) >> 4).max(rect.r0);
-    let r_last = (((b.y + 7) >> 4) - 1).min(rect.r1);
-    if r_top > r_last {
-        return None;
-    }
-    // The planes into the slot as soon as they are made, attribute by
-    // attribute: they hold no register while the rest is made.
-    let out = slot.as_mut_ptr();
-    // SAFETY: `out` points to the slot, valid for writes; `planes` writes
-    // every entry of the planes.
-    unsafe { planes(v, area, r_top, core::ptr::addr_of_mut!((*out).planes)) };
     // Which side the long edge t → b bounds: the middle vertex's side of it.
     let cross = (b.x - t.x) * (m.y - t.y) - (b.y - t.y) * (m.x - t.x);
     // The edges at the first row: the long one, and the short one that
     // holds that row.
-    let sy = 16 * r_top + 8;
+    let sy = 16 * s.rows.0 + 8;
     let long = Edge::new((t.x, t.y), (b.x, b.y), sy);
     let upper = m.y > sy;
     let short = if upper {
@@ -131,24 +219,36 @@ pub(crate) fn set_up<'s, const N: usize>(
     } else {
         (short, long)
     };
-    // Columns whose samples lie in [min x, max x]: within the rectangle's,
-    // the spans need no clamp.
-    let (lo, hi) = (t.x.min(m.x).min(b.x), t.x.max(m.x).max(b.x));
-    let walk = Walk {
-        y: r_top,
-        last: r_last,
+    Walk {
+        y: s.rows.0,
+        last: s.rows.1,
         cols: (rect.c0, rect.c1),
-        clamp: (lo + 7) >> 4 < rect.c0 || (hi - 8) >> 4 > rect.c1,
+        clamp: s.clamp,
         left,
         right,
         long_left,
         // The first row whose sample lies at or below the middle vertex.
         switch: if upper { (m.y + 7) >> 4 } else { i32::MAX },
         lower: ((m.x, m.y), (b.x, b.y)),
-    };
-    // SAFETY: as above; with the planes written, the slot is initialised.
+    }
+}
+
+/// The walked set-up of any triangle (no sample tested one by one), for
+/// tests: `None` where no row has a sample.
+#[cfg(test)]
+pub(crate) fn set_up_walked<'s, const N: usize>(
+    v: &[Vtx<N>; 3],
+    area: i32,
+    rect: &Rect,
+    slot: &'s mut MaybeUninit<Triangle<N>>,
+) -> Option<&'s mut Triangle<N>> {
+    let s = samples(v, rect)?;
+    let out = slot.as_mut_ptr();
+    // SAFETY: the slot is valid for writes; `planes` and the walk's write
+    // initialise it.
     unsafe {
-        core::ptr::addr_of_mut!((*out).walk).write(walk);
+        planes(v, area, s.rows.0, core::ptr::addr_of_mut!((*out).planes));
+        core::ptr::addr_of_mut!((*out).walk).write(walk(v, &s, rect));
         Some(slot.assume_init_mut())
     }
 }
@@ -374,7 +474,9 @@ mod tests {
             r0: 0,
             r1: h - 1,
         };
-        if let Some(Triangle { planes, walk }) = set_up(v, a, &rect, &mut MaybeUninit::uninit()) {
+        if let Some(Triangle { planes, walk }) =
+            set_up_walked(v, a, &rect, &mut MaybeUninit::uninit())
+        {
             walk.run(planes, |s| {
                 got.push((s.y, s.x0, s.x0 + s.n as i32 - 1, s.start()[0]));
                 Ok::<(), ()>(())
@@ -459,7 +561,7 @@ mod tests {
                 continue;
             }
             if let Some(Triangle { planes, walk: w }) =
-                set_up(&v, a, &rect, &mut MaybeUninit::uninit())
+                set_up_walked(&v, a, &rect, &mut MaybeUninit::uninit())
             {
                 w.run(planes, |s| {
                     for k in 0..s.n as i32 {

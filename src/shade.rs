@@ -17,7 +17,7 @@ use crate::material::Specular;
 use crate::mesh::face_normal;
 use crate::num::division::floor_div;
 use crate::options::{DrawStats, RenderOptions, ShadingKind, ShadingMode};
-use crate::setup::{self, Rect, Vtx};
+use crate::setup::{self, Rect, SetUp, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
@@ -300,19 +300,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             return Ok(());
         }
         let mut slot = MaybeUninit::uninit();
-        let Some(setup::Triangle { planes, walk }) = setup::set_up(v, area, rect, &mut slot) else {
-            return Ok(());
+        let mut table = [MaybeUninit::uninit(); CHUNK];
+        let (planes, walk) = match setup::set_up(v, area, rect, &mut slot, &mut table) {
+            SetUp::Empty => return Ok(()),
+            // Most triangles: every row at once, one call of the output.
+            SetUp::Rows { planes, rows, y } => {
+                stats.drawn = stats.drawn.saturating_add(1);
+                let res = out.rows(depth, rows, (y, 0), (rect.c0, rect.c1), planes, sh);
+                if let Ok(w) = res {
+                    stats.pixels = stats.pixels.saturating_add(w);
+                }
+                return res.map(|_| ());
+            }
+            SetUp::Walk(setup::Triangle { planes, walk }) => (planes, walk),
         };
         stats.drawn = stats.drawn.saturating_add(1);
-        let mut table = [MaybeUninit::uninit(); CHUNK];
-        // Most triangles: every row at once, one call of the output.
-        if let Some(rows) = walk.all(&mut table) {
-            let res = out.rows(depth, rows, (walk.y, 0), walk.cols, planes, sh);
-            if let Ok(w) = res {
-                stats.pixels = stats.pixels.saturating_add(w);
-            }
-            return res.map(|_| ());
-        }
         // A triangle's pixels are at most 2¹¹ × 2¹¹: no overflow.
         let (mut pixels, top) = (0u32, walk.y);
         let res = loop {

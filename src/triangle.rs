@@ -29,6 +29,7 @@ use crate::options::{DrawStats, ShadingMode};
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
 use crate::vertex::CachedVertex;
+use crate::walk::EdgeFunctions;
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Culls, lights and draws one triangle: mesh vertices `vertex`,
@@ -120,11 +121,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
 /// Whether the triangle of window positions `p` (doubled area `area`, not
 /// 0) covers none of the samples of columns `cols` and rows `rows`, by
-/// SPEC.md 5's rule as the walk applies it (`src/walk.rs`): a sample is
-/// covered where every edge function of the positively oriented triangle
-/// is positive, or zero on a top or left edge. Positions within the guard
-/// band and samples within the target: differences below 2¹⁵, each edge
-/// function below 2³¹.
+/// SPEC.md 5's rule as the walk applies it ([`EdgeFunctions`]).
 #[inline(always)]
 pub(crate) fn covers_none(
     p: &[[i32; 3]; 3],
@@ -132,26 +129,17 @@ pub(crate) fn covers_none(
     cols: (i32, i32),
     rows: (i32, i32),
 ) -> bool {
-    let (a, mut b, mut c) = ((p[0][0], p[0][1]), (p[1][0], p[1][1]), (p[2][0], p[2][1]));
-    if area < 0 {
-        core::mem::swap(&mut b, &mut c);
-    }
-    let edge = |p: (i32, i32), q: (i32, i32)| {
-        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-        (p, dx, dy, dy < 0 || (dy == 0 && dx > 0))
-    };
-    let edges = [edge(b, c), edge(c, a), edge(a, b)];
-    for r in rows.0..=rows.1 {
-        for col in cols.0..=cols.1 {
-            let s = (16 * col + 8, 16 * r + 8);
-            let inside = edges.iter().all(|&(p, dx, dy, top_left)| {
-                let f = dx * (s.1 - p.1) - dy * (s.0 - p.0);
-                f > 0 || (f == 0 && top_left)
-            });
-            if inside {
+    let xy = p.map(|v| (v[0], v[1]));
+    let mut first = EdgeFunctions::new(xy, area, (16 * cols.0 + 8, 16 * rows.0 + 8));
+    for _ in rows.0..=rows.1 {
+        let mut e = first;
+        for _ in cols.0..=cols.1 {
+            if e.covers() {
                 return false;
             }
+            e.next_col();
         }
+        first.next_row();
     }
     true
 }
