@@ -560,5 +560,9 @@ where
             return Ok(());
         }
     }
-    f.triangle::<M, _, D>(cache, slot, vertex, out, depth, stats)
+    if slot.iter().any(|&k| k >= cache.len()) {
+        return Ok(());
+    }
+    // SAFETY: every slot was checked just above.
+    unsafe { f.triangle::<M, _, D>(cache, slot, vertex, out, depth, stats) }
 }

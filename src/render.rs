@@ -215,11 +215,15 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         }
         for tri in mesh.indices {
             let idx = tri.map(|i| i as usize);
-            if X::CACHED {
-                frame.triangle::<M, O, D>(cache, idx, idx, out, depth, &mut stats)
-            } else {
-                let mut three = idx.map(|i| frame.stage.project(i));
-                frame.triangle::<M, O, D>(&mut three, [0, 1, 2], idx, out, depth, &mut stats)
+            // SAFETY: the mesh is validated above, so every index is below
+            // `n`, the cache's length; three corners take `[0, 1, 2]`.
+            unsafe {
+                if X::CACHED {
+                    frame.triangle::<M, O, D>(cache, idx, idx, out, depth, &mut stats)
+                } else {
+                    let mut three = idx.map(|i| frame.stage.project(i));
+                    frame.triangle::<M, O, D>(&mut three, [0, 1, 2], idx, out, depth, &mut stats)
+                }
             }
             .map_err(RenderError::Target)?;
         }
