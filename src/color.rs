@@ -282,6 +282,14 @@ impl Shade {
         }
     }
 
+    /// A shade from raw bits already within `0 ..= 65536` (a shade kept
+    /// in a vertex cache): no clamp.
+    #[inline(always)]
+    pub(crate) const fn from_bits_in_range(r: u32, g: u32, b: u32) -> Shade {
+        debug_assert!(r <= SHADE_ONE && g <= SHADE_ONE && b <= SHADE_ONE);
+        Shade { c: [r, g, b] }
+    }
+
     /// The raw channels, each in 0 ..= 65536.
     ///
     /// ```

@@ -584,7 +584,8 @@ fn pack(s: Shade) -> u64 {
 #[inline(always)]
 fn unpack(v: u64) -> Shade {
     let m = (1u64 << 17) - 1;
-    Shade::from_bits(
+    // Packed from a shade ([`pack`]): every channel within 0 ..= 2¹⁶.
+    Shade::from_bits_in_range(
         (v & m) as u32,
         ((v >> 17) & m) as u32,
         ((v >> 34) & m) as u32,
