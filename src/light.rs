@@ -839,7 +839,8 @@ pub struct PreparedPoint<A: Falloff, const SPOT: bool> {
 }
 
 /// The factor `s·f` (`Q.15`) and direction of a point-like light at `pos`
-/// (eye space, `I40F24`) seen from the surface; `None` where `d = 0`.
+/// (eye space, `I40F24`) seen from the surface; `None` where `d = 0` or
+/// where the surface faces away from the light.
 #[inline(always)]
 fn point_factor<A: Falloff, const SPOT: bool>(
     ctx: &Surface,
@@ -850,6 +851,9 @@ fn point_factor<A: Falloff, const SPOT: bool>(
     let p = ctx.position.to_bits();
     // |pos| ≤ 2^62, |p| < 2^31: the difference cannot overflow.
     let v = [0, 1, 2].map(|i| pos[i] - p[i] as i64);
+    if faces_away(ctx.normal, &v) {
+        return None;
+    }
     let (l, d) = light_vector(v)?;
     let mut sf = A::factor(att, d);
     if SPOT {
@@ -861,6 +865,24 @@ fn point_factor<A: Falloff, const SPOT: bool>(
         sf = (s * sf + (1 << 14)) >> 15;
     }
     Some((l, sf))
+}
+
+/// Whether `N·v ≤ 0` for a light `v` away (`I40F24` raw) within 128
+/// units (every component fits `i32`), so that the light adds nothing
+/// (SPEC.md 3: no term where `N·L ≤ 0`): the exact sign, decided before
+/// `v` is normalised. (From the normalised `L` the sign is the same but
+/// where `|N·L|` is within its rounding, about 2⁻¹⁴, of 0: there the
+/// model steps, and the exact sign is the reference's.) A farther light
+/// is not tested here.
+#[inline(always)]
+fn faces_away(n: Unit3, v: &[i64; 3]) -> bool {
+    if !v.iter().all(|c| c.unsigned_abs() < 1 << 31) {
+        return false;
+    }
+    let b = n.to_bits();
+    // |v_i| < 2^31, |n_i| ≤ 2^14: each product below 2^45.
+    let dot = (0..3).fold(0i64, |s, i| s + mul_i32_i16(v[i] as i32, b[i]));
+    dot <= 0
 }
 
 /// The unit vector and length of `v` (`I40F24` raw). Where every component
