@@ -75,6 +75,10 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         } else {
             3
         }
+    } else if f.contains("setup::set_up") && c > 4 * d {
+        // The walk's rows, stepped inside the set-up: more often than a
+        // triangle's four attributes (depth and three colours).
+        4
     } else if ["setup::", "turned_over", "Rows::fine", "clip::"]
         .iter()
         .any(|k| f.contains(k))
@@ -168,7 +172,9 @@ pub(super) fn stage_table(
          reject, what ran less often is the set-up's; in the walk (`Frame::draw`) and the row \
          loop (`gouraud_depth_rows`) what ran once a pixel is per pixel, what ran more often \
          than twice a triangle set up per row ({rows4} rows: the most any instruction of the \
-         row loop ran, short of the pixels), else the set-up's; what ran fewer times than a \
+         row loop ran, short of the pixels), else the set-up's; in the set-up (`set_up`, \
+         which walks the rows of most triangles) what ran more often than four times a \
+         triangle set up (its attributes) per row; what ran fewer times than a \
          quarter of the triangles set up, anywhere, is the draw's own. The library routines' \
          calls are not followed to their callers.\n\n\
          | stage | unit | units | M4F per unit | budget | M0+ per unit | budget |\n\
