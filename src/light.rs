@@ -1335,3 +1335,49 @@ impl<P: PreparedLights, const N: usize> PreparedLights for heapless::Vec<P, N> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{faces_away, unit_from_f64};
+    use crate::tests::xorshift;
+
+    /// `faces_away` is the exact sign of `N·v` for a light within `i32`
+    /// (ties, `N·v = 0`, included), and never says so of a farther one.
+    #[test]
+    fn faces_away_is_the_exact_sign() {
+        let mut next = xorshift(0x3c6e_f372_fe94_f82b);
+        let mut signed = |bits: u64| {
+            let m = next() >> (64 - bits);
+            if next() & 1 == 0 {
+                m as i64
+            } else {
+                -(m as i64)
+            }
+        };
+        let (mut away, mut toward) = (0, 0);
+        for i in 0..200_000 {
+            let Ok(n) = unit_from_f64([0, 1, 2].map(|_| signed(20) as f64)) else {
+                continue;
+            };
+            let b = n.to_bits();
+            // Within i32 mostly; ties from a vector across the normal.
+            let mut v = [0, 1, 2].map(|_| signed(1 + (i % 31) as u64));
+            if i % 5 == 0 {
+                v = [b[1] as i64 * 3, -(b[0] as i64) * 3, 0];
+            }
+            if i % 97 == 0 {
+                v[i % 3] = 1 << 31;
+            }
+            let fits = v.iter().all(|c| c.unsigned_abs() < 1 << 31);
+            let dot: i128 = (0..3).map(|k| v[k] as i128 * b[k] as i128).sum();
+            let want = fits && dot <= 0;
+            assert_eq!(faces_away(n, &v), want, "{v:?} {b:?}");
+            if want {
+                away += 1;
+            } else {
+                toward += 1;
+            }
+        }
+        assert!(away > 50_000 && toward > 50_000, "{away} {toward}");
+    }
+}
