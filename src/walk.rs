@@ -85,8 +85,10 @@ impl Edge {
 /// Edge `p → q` at sample `s` is `f = dx·(s.y − p.y) − dy·(s.x − p.x)`,
 /// kept less 1 for an edge that is neither top nor left, so that the
 /// sample is covered where all three are `≥ 0`: their `|` has no sign bit.
-/// Positions within the guard band and samples within the target:
-/// differences below 2¹⁵, each product below 2³⁰, `f` below 2³¹.
+/// Positions within the guard band and samples within the target or a
+/// pixel past it (where a scan steps last; the guard band holds the
+/// target's pixels with one to spare): differences below 2¹⁵, each
+/// product below 2³⁰, `f` below 2³¹.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct EdgeFunctions {
     /// The three at the sample.
