@@ -329,8 +329,10 @@ pub(crate) struct Phong<'l, S: Specular, V: Viewer, L: LightSet> {
     lighting: &'l Lighting<S, V, L>,
     origin: [i64; 3],
     shift: u32,
-    /// `origin` where it fits `i32` and `shift` is 0 (a triangle within a
-    /// unit of the world, near the eye: the usual one): the position is
+    /// `origin` as `i32` where `shift` is 0 (a triangle or piece less than
+    /// a unit of the world across: the usual one) and it fits `i32`
+    /// (corners are `I8F24` eye positions or mixes of them, so it does;
+    /// the test keeps the form exact for any origin): the position is
     /// then an `i32` sum, saturating as the clamp of the `i64` one.
     near: Option<[i32; 3]>,
     dither: bool,

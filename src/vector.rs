@@ -857,10 +857,11 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
 
 /// How much more [`normal_matrix`] lets a matrix scale one direction than
 /// another (its condition number, estimated within a factor of 36; 1 for
-/// a rotation and a uniform scale). Measured
-/// (`host/tests/suite/stiff_cases.rs`): a sphere flattened 10⁴ times drew
-/// 2 LSB away from the reference in Phong shading before this limit
-/// refused it; 1 000 times, it draws within the bound.
+/// a rotation and a uniform scale). A sphere flattened 1 000 times draws
+/// within the bound and one flattened 10⁴ times is refused
+/// (`host/tests/suite/stiff_cases.rs` asserts both); drawn before this
+/// limit existed, the 10⁴ one was 2 LSB away from the reference in Phong
+/// shading (measured once; no test can repeat it with the limit on).
 pub const MAX_ANISOTROPY: u32 = 1 << 11;
 
 /// The sign and bit length of the determinant of the matrix whose first

@@ -875,7 +875,8 @@ fn viewport_wider_than_i16() {
 /// axis: taken from the entries rounded to the largest's precision, it
 /// lost it, and the disc drew with zero normals, ambient alone), and
 /// refused past about `MAX_ANISOTROPY` (at 10⁴, the normals' own steps,
-/// turned that much, put Phong shading 2 LSB away from the reference).
+/// turned that much, put Phong shading 2 LSB away from the reference when
+/// it was drawn, before the limit: measured once, not repeated here).
 #[test]
 fn strongly_anisotropic_models() {
     let light = LightDesc::Directional {
