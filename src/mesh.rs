@@ -562,11 +562,22 @@ impl<'a> Mesh<'a> {
             }
         }
         let count = self.positions.len();
-        // The largest index first, in one pass the compiler vectorises
-        // (callgrind, S3 on x86-64: 0.19 M instructions fewer a frame than
-        // the search below alone); the search only for a mesh that fails.
-        let largest = self.indices.as_flattened().iter().fold(0, |m, &i| m.max(i));
-        if (largest as usize) < count {
+        if count > usize::from(u16::MAX) {
+            return Ok(());
+        }
+        // All indices at once, in one pass the compiler vectorises; the
+        // search only for a mesh that fails. Index `i < count` exactly
+        // where `i + 2¹⁶ − count < 2¹⁶` (both terms below 2¹⁶, `count ≥ 1`
+        // here or no index passes), so the sums' `|` has no bit from 2¹⁶
+        // up exactly where every index is below `count`: an add and an or
+        // an index, where the largest took a compare and a select.
+        let k = 0x1_0000 - count as u32;
+        let all = self
+            .indices
+            .as_flattened()
+            .iter()
+            .fold(0, |m, &i| m | (i as u32 + k));
+        if all < 0x1_0000 {
             return Ok(());
         }
         for (t, tri) in self.indices.iter().enumerate() {
@@ -808,4 +819,50 @@ pub fn vertex_normals(
         *o = PackedNormal::from_vector(*s);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every index is checked against the count at the ends of both
+    /// ranges: the last vertex passes, one past it fails with the first
+    /// offending triangle, an empty position list fails any index, and a
+    /// full `u16` range of positions passes any.
+    #[test]
+    fn validate_checks_each_index_at_the_edges() {
+        let positions = [[0i16; 3]; 65_537];
+        for count in [1usize, 2, 3, 255, 256, 257, 32_768, 65_535, 65_536, 65_537] {
+            let p = &positions[..count];
+            let last = (count - 1).min(65_535) as u16;
+            let ok = [[0, last, 0], [last, last, last]];
+            assert_eq!(
+                Mesh::new(p, Bounds::UNIT, &ok).validate(),
+                Ok(()),
+                "{count}"
+            );
+            if count <= 65_535 {
+                let bad = count as u16;
+                for k in 0..3 {
+                    let mut t = [[0u16; 3], [last; 3], [0; 3]];
+                    t[2][k] = bad;
+                    assert_eq!(
+                        Mesh::new(p, Bounds::UNIT, &t).validate(),
+                        Err(MeshError::IndexOutOfRange {
+                            triangle: 2,
+                            index: bad
+                        }),
+                        "{count} {k}"
+                    );
+                }
+                let worst = [[u16::MAX; 3]];
+                assert!(Mesh::new(p, Bounds::UNIT, &worst).validate().is_err());
+            }
+        }
+        let none: [[i16; 3]; 0] = [];
+        assert!(Mesh::new(&none, Bounds::UNIT, &[[0, 0, 0]])
+            .validate()
+            .is_err());
+        assert_eq!(Mesh::new(&none, Bounds::UNIT, &[]).validate(), Ok(()));
+    }
 }

@@ -285,6 +285,7 @@ unsafe fn planes<const N: usize>(v: &[Vtx<N>; 3], area: i32, r_top: i32, out: *m
             };
             put(k, gx, gy, offset(gx, gy, o));
             k += 1;
+            platform::keep_loop_rolled();
         }
         if k == N {
             return;
