@@ -50,6 +50,12 @@ pub(crate) const fn hardware_div32() -> bool {
 /// give the same spans.
 pub(crate) const TEST_SAMPLES: bool = !hardware_div32();
 
+/// Whether an edge of a gentle slope starting near the walk's first row
+/// finds its small quotients by steps rather than a division
+/// (`src/walk.rs`): where the core divides in software, a few steps cost
+/// less than a reciprocal and two corrected products.
+pub(crate) const STEP_QUOTIENTS: bool = !hardware_div32();
+
 /// The target stores integers little-endian, the byte order of the mesh
 /// layout: where this holds, a mesh's arrays are read in place as `i16` and
 /// `u16` values.

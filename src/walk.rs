@@ -50,9 +50,12 @@ impl Edge {
     #[inline(always)]
     pub(crate) fn new(a: (i32, i32), b: (i32, i32), sy: i32) -> Edge {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let div = Divisor::new(dy);
         let d = 16 * dy;
         let n = (a.0 - 8) * dy + dx * (sy - a.1);
+        if platform::STEP_QUOTIENTS && dx.unsigned_abs() <= 16 * dy as u32 && sy - a.1 <= 16 {
+            return Edge::stepped(a.0, dx, dy, n);
+        }
+        let div = Divisor::new(dy);
         let q = div.ceil((n + 15) >> 4);
         // ⌈dx/dy⌉·dy − dx ∈ [0, dy): the remainder's step, in 16ths.
         let step = div.ceil(dx);
@@ -62,6 +65,46 @@ impl Edge {
             d,
             step,
             rstep: 16 * (step * dy - dx),
+        }
+    }
+
+    /// [`Edge::new`] of an edge of at most 16 columns a row whose sample
+    /// row `sy` lies at most a row below its top `a` (`n` from `a.x`,
+    /// `dx`, `dy` as there), by steps instead of a division: `⌈dx/dy⌉` from
+    /// 0, at most 16 steps, and `⌈n/16dy⌉` from `a`'s own column `⌈(a.x −
+    /// 8)/16⌉`, within `|dx|·(sy − a.y)/(16·dy) + 1 ≤ 17` steps of it. Each
+    /// loop ends where its remainder lies in `[0, divisor)`: the
+    /// division's quotients and remainders. Out of line: it is called from
+    /// the walk's start and its switch.
+    #[inline(never)]
+    fn stepped(ax: i32, dx: i32, dy: i32, n: i32) -> Edge {
+        let (mut step, mut t) = (0, -dx);
+        while t < 0 {
+            step += 1;
+            t += dy;
+        }
+        while t >= dy {
+            step -= 1;
+            t -= dy;
+        }
+        let d = 16 * dy;
+        // |column| < 2¹⁰ and d < 2¹⁹: the product below 2²⁹.
+        let mut q = (ax + 7) >> 4;
+        let mut rem = q * d - n;
+        while rem < 0 {
+            q += 1;
+            rem += d;
+        }
+        while rem >= d {
+            q -= 1;
+            rem -= d;
+        }
+        Edge {
+            q,
+            rem,
+            d,
+            step,
+            rstep: 16 * t,
         }
     }
 
@@ -363,5 +406,68 @@ impl Walk {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tests::xorshift;
+
+    /// The stepped quotients are the division's: `q = ⌈n/16dy⌉` and
+    /// `step = ⌈dx/dy⌉` with their remainders in `[0, divisor)`, for every
+    /// edge the steps take (slopes up to 16 columns a row, the sample row
+    /// up to a row below the top, positions across the guard band), the
+    /// bounds themselves included.
+    #[test]
+    fn stepped_edges_are_the_division() {
+        let mut rnd = xorshift(0x5eed_0fed_9e50_u64);
+        let mut checked = 0;
+        for i in 0..200_000 {
+            let r = [rnd(), rnd(), rnd(), rnd()];
+            let g = crate::vertex::GUARD as u64;
+            let ax = (r[0] % (2 * g + 1)) as i32 - g as i32;
+            let ay = (r[1] % (2 * g + 1)) as i32 - g as i32;
+            let dy = match i % 4 {
+                0 => 1 + (r[2] % 16) as i32,
+                1 => 1 + (r[2] % 400) as i32,
+                _ => 1 + (r[2] % 2000) as i32,
+            };
+            let reach = 16 * dy as u64;
+            let dx = match i % 5 {
+                0 => 16 * dy,
+                1 => -16 * dy,
+                _ => (r[3] % (2 * reach + 1)) as i32 - reach as i32,
+            };
+            let (bx, by) = (ax + dx, ay + dy);
+            if bx.abs() > g as i32 || by > g as i32 {
+                continue;
+            }
+            // The first sample row at or below a, or the next where that
+            // is still at most a row below it.
+            let sy0 = 16 * ((ay + 7) >> 4) + 8;
+            let sy = if i % 2 == 1 && sy0 == ay {
+                sy0 + 16
+            } else {
+                sy0
+            };
+            let n = (ax - 8) * dy + dx * (sy - ay);
+            let e = Edge::stepped(ax, dx, dy, n);
+            let d = 16 * dy as i64;
+            let q = (n as i64 + d - 1).div_euclid(d);
+            let step = (dx as i64 + dy as i64 - 1).div_euclid(dy as i64);
+            assert_eq!(
+                (e.q as i64, e.rem as i64, e.d as i64),
+                (q, q * d - n as i64, d),
+                "{ax} {ay} {dx} {dy} {sy}"
+            );
+            assert_eq!(
+                (e.step as i64, e.rstep as i64),
+                (step, 16 * (step * dy as i64 - dx as i64)),
+                "{dx} {dy}"
+            );
+            checked += 1;
+        }
+        assert!(checked > 150_000, "{checked}");
     }
 }
