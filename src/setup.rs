@@ -343,6 +343,15 @@ fn gradient<const N: usize>(v: &[Vtx<N>; 3], k: usize, lam: [i32; 4]) -> Option<
     let d1 = v[1].a[k] - v[0].a[k];
     let d2 = v[2].a[k] - v[0].a[k];
     // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
+    if platform::SOFT_MUL64 && ((d1 + (1 << 15)) | (d2 + (1 << 15))) as u32 >> 16 == 0 {
+        // Both differences fit i16 (most of a fine mesh's): the same
+        // products from two 16 × 16-bit multiplies each, not four.
+        let (d1, d2) = (d1 as i16, d2 as i16);
+        let g = |l1: i32, l2: i32| {
+            shr_to_i32(mul_i32_i16(l1, d1) + mul_i32_i16(l2, d2) + (1 << 23), 24)
+        };
+        return Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?));
+    }
     let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
     Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?))
 }
@@ -520,6 +529,44 @@ mod tests {
             }
         }
         assert!(count > 30_000, "{count}");
+    }
+
+    /// Each gradient is `⌊(d₁·Λ₁ + d₂·Λ₂ + 2²³)/2²⁴⌋` of the 64-bit
+    /// products, or `None` where that does not fit `i32`, whichever
+    /// products make it: differences that fit `i16` (at their ends too)
+    /// and wider ones, `Λ` of every size.
+    #[test]
+    fn gradients_are_the_wide_products() {
+        let mut rnd = xorshift(0x0bad_5eed_1234_4321);
+        let (mut fits, mut wide) = (0, 0);
+        for i in 0..400_000 {
+            let r = [rnd(), rnd(), rnd(), rnd()];
+            let span = [1i64 << 15, 1 << 16, ATTR as i64][i % 3];
+            let d = |x: u64| match x % 8 {
+                0 => -(1 << 15),
+                1 => (1 << 15) - 1,
+                2 => 1 << 15,
+                _ => (x % (2 * span as u64)) as i64 - span,
+            } as i32;
+            let a0 = (r[3] % 1000) as i32 - 500;
+            let v = [a0, a0 + d(r[0]), a0 + d(r[1])].map(|a| Vtx { x: 0, y: 0, a: [a] });
+            let lam = [0, 1, 2, 3].map(|k| {
+                (rnd() >> (1 + (r[2] >> (8 * k)) % 40)) as i32 * if rnd() & 1 == 0 { 1 } else { -1 }
+            });
+            let (d1, d2) = ((v[1].a[0] - a0) as i64, (v[2].a[0] - a0) as i64);
+            let want = |l1: i32, l2: i32| {
+                let g = (d1 * l1 as i64 + d2 * l2 as i64 + (1 << 23)) >> 24;
+                i32::try_from(g).ok()
+            };
+            let want = want(lam[0], lam[2]).zip(want(lam[1], lam[3]));
+            assert_eq!(gradient(&v, 0, lam), want, "{d1} {d2} {lam:?}");
+            if i16::try_from(d1).is_ok() && i16::try_from(d2).is_ok() {
+                fits += 1;
+            } else {
+                wide += 1;
+            }
+        }
+        assert!(fits > 50_000 && wide > 50_000, "{fits} {wide}");
     }
 
     /// Slivers whose planes are steeper than `i32` holds: the exact
