@@ -124,6 +124,26 @@ pub(crate) fn mul_i32_i16(a: i32, b: i16) -> i64 {
     }
 }
 
+/// `a · b`, exactly, for `|b| < 2¹⁵` (`|a · b| < 2⁴⁷`): on the targets
+/// without a 32 × 32 → 64-bit multiply, two 16 × 16 → 32-bit products,
+/// `aₕ·b` and `aₗ·b` (`aₕ`, `aₗ < 2¹⁶` unsigned: each below 2³¹ in
+/// magnitude).
+#[inline(always)]
+pub(crate) fn mul_u32_i16(a: u32, b: i32) -> i64 {
+    debug_assert!(b.unsigned_abs() < 1 << 15);
+    if platform::SOFT_MUL64 {
+        mul_u32_i16_limbs(a, b)
+    } else {
+        mul_i32_u32(b, a)
+    }
+}
+
+/// [`mul_u32_i16`] from 16-bit halves of `a`.
+#[inline(always)]
+pub(crate) fn mul_u32_i16_limbs(a: u32, b: i32) -> i64 {
+    ((((a >> 16) as i32 * b) as i64) << 16) + ((a & 0xFFFF) as i32 * b) as i64
+}
+
 /// [`mul_i32_i16`] from 16-bit halves of `a` (`aₗ` unsigned).
 #[inline(always)]
 pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
@@ -215,8 +235,8 @@ pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
 mod tests {
     use super::{
         mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs,
-        mul_i32_u32_shr31_limbs, mul_u32_limbs, mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10,
-        sum_sq3_shr10_limbs,
+        mul_i32_u32_shr31_limbs, mul_u32_i16_limbs, mul_u32_limbs, mul_u32_shr12,
+        mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
     };
     use crate::tests::xorshift;
 
@@ -286,6 +306,10 @@ mod tests {
                 );
                 for b16 in [b as i16, i16::MIN, i16::MAX] {
                     assert_eq!(mul_i32_i16_limbs(a32, b16), a32 as i64 * b16 as i64);
+                }
+                for b15 in [b as i16 as i32 / 2, -(1 << 15) + 1, (1 << 15) - 1] {
+                    let want = (a as u32) as i64 * b15 as i64;
+                    assert_eq!(mul_u32_i16_limbs(a as u32, b15), want, "{a} {b15}");
                 }
                 let h = mul_hi32(a as u32, b as u32);
                 let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
