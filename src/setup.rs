@@ -38,7 +38,7 @@
 use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
-use crate::num::widening::{mul_i32, mul_i32_i16, mul_u32_i16};
+use crate::num::widening::{dot2_round16, mul_i32, mul_i32_i16, mul_u32_i16};
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::walk::{Edge, EdgeFunctions, Walk, CHUNK};
@@ -370,7 +370,7 @@ fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
 /// vertex to its pixel's centre.
 #[inline(always)]
 fn offset(gx: i32, gy: i32, o: (i32, i32)) -> i32 {
-    ((mul_i32_i16(gx, o.0 as i16) + mul_i32_i16(gy, o.1 as i16) + 8) >> 4) as i32
+    dot2_round16(gx, o.0, gy, o.1)
 }
 
 /// [`gradients`] from the exact quotients `round(256·N/A)`, `N` the

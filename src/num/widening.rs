@@ -144,6 +144,31 @@ pub(crate) fn mul_u32_i16_limbs(a: u32, b: i32) -> i64 {
     ((((a >> 16) as i32 * b) as i64) << 16) + ((a & 0xFFFF) as i32 * b) as i64
 }
 
+/// `⌊(a·x + b·y + 8)/16⌋` modulo 2³² (`|x|, |y| ≤ 2¹⁴`): a sum of two
+/// products rounded to sixteenths, kept as the low 32 bits. Where a 64-bit
+/// product is made from 16-bit ones, in 32-bit arithmetic: with `a` split
+/// as `aₕ·2¹⁶ + aₗ` (`aₗ` unsigned) and `b` likewise, the sum is `H·2¹⁶ +
+/// L`, with `H = aₕx + bₕy` and `L = aₗx + bₗy` each below 2³¹ in
+/// magnitude; as `H·2¹⁶` is a multiple of 16, the quotient is `H·2¹² +
+/// ⌊(L + 8)/16⌋`.
+#[inline(always)]
+pub(crate) fn dot2_round16(a: i32, x: i32, b: i32, y: i32) -> i32 {
+    debug_assert!(x.unsigned_abs() <= 1 << 14 && y.unsigned_abs() <= 1 << 14);
+    if platform::SOFT_MUL64 {
+        dot2_round16_limbs(a, x, b, y)
+    } else {
+        ((a as i64 * x as i64 + b as i64 * y as i64 + 8) >> 4) as i32
+    }
+}
+
+/// [`dot2_round16`] from 16-bit halves.
+#[inline(always)]
+pub(crate) fn dot2_round16_limbs(a: i32, x: i32, b: i32, y: i32) -> i32 {
+    let h = (a >> 16) * x + (b >> 16) * y;
+    let l = (a & 0xFFFF) * x + (b & 0xFFFF) * y;
+    (h << 12).wrapping_add((l + 8) >> 4)
+}
+
 /// [`mul_i32_i16`] from 16-bit halves of `a` (`aₗ` unsigned).
 #[inline(always)]
 pub(crate) fn mul_i32_i16_limbs(a: i32, b: i16) -> i64 {
@@ -234,9 +259,9 @@ pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{
-        mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs, mul_i32_u32_limbs,
-        mul_i32_u32_shr31_limbs, mul_u32_i16_limbs, mul_u32_limbs, mul_u32_shr12,
-        mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
+        dot2_round16_limbs, mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs,
+        mul_i32_u32_limbs, mul_i32_u32_shr31_limbs, mul_u32_i16_limbs, mul_u32_limbs,
+        mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
     };
     use crate::tests::xorshift;
 
@@ -306,6 +331,12 @@ mod tests {
                 );
                 for b16 in [b as i16, i16::MIN, i16::MAX] {
                     assert_eq!(mul_i32_i16_limbs(a32, b16), a32 as i64 * b16 as i64);
+                }
+                for x in [b as i16 as i32 >> 2, -(1 << 14), 1 << 14, 8, -8] {
+                    let y = (a as i16 as i32 >> 2).clamp(-(1 << 14), 1 << 14);
+                    let want = (a32 as i64 * x as i64 + b as i32 as i64 * y as i64 + 8) >> 4;
+                    let got = dot2_round16_limbs(a32, x, b as i32, y);
+                    assert_eq!(got, want as i32, "{a32} {x} {b} {y}");
                 }
                 for b15 in [b as i16 as i32 / 2, -(1 << 15) + 1, (1 << 15) - 1] {
                     let want = (a as u32) as i64 * b15 as i64;
