@@ -38,7 +38,7 @@
 use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
-use crate::num::widening::{dot2_round16, mul_i32, mul_i32_i16, mul_u32_i16};
+use crate::num::widening::{dot2_round16, dot2_round_shr24, mul_i32, mul_u32_i16};
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::walk::{Edge, EdgeFunctions, Walk, CHUNK};
@@ -343,14 +343,11 @@ fn gradient<const N: usize>(v: &[Vtx<N>; 3], k: usize, lam: [i32; 4]) -> Option<
     let d1 = v[1].a[k] - v[0].a[k];
     let d2 = v[2].a[k] - v[0].a[k];
     // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
-    if platform::SOFT_MUL64 && ((d1 + (1 << 15)) | (d2 + (1 << 15))) as u32 >> 16 == 0 {
-        // Both differences fit i16 (most of a fine mesh's): the same
-        // products from two 16 × 16-bit multiplies each, not four.
-        let (d1, d2) = (d1 as i16, d2 as i16);
-        let g = |l1: i32, l2: i32| {
-            shr_to_i32(mul_i32_i16(l1, d1) + mul_i32_i16(l2, d2) + (1 << 23), 24)
-        };
-        return Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?));
+    if platform::SOFT_MUL64 && ((d1 + 0x7FFF) as u32).max((d2 + 0x7FFF) as u32) < 0xFFFF {
+        // Both differences within ±(2¹⁵ − 1) (most of a fine mesh's): the
+        // same value in 32-bit steps, which always fits.
+        let g = |l1: i32, l2: i32| dot2_round_shr24(l1, d1, l2, d2);
+        return Some((g(lam[0], lam[2]), g(lam[1], lam[3])));
     }
     let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
     Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?))

@@ -161,6 +161,34 @@ pub(crate) fn dot2_round16(a: i32, x: i32, b: i32, y: i32) -> i32 {
     }
 }
 
+/// `⌊(l₁·d₁ + l₂·d₂ + 2²³)/2²⁴⌋` for `|d| < 2¹⁵` (any `i32` `l`): a set-up
+/// gradient from two barycentric ones (`src/setup.rs`), always within
+/// ±2²³. Where a 64-bit product is made from 16-bit ones, in 32-bit
+/// arithmetic: with `l = lₕ·2¹⁶ + lₗ` (`lₗ` unsigned), the sum `S` is
+/// `H·2¹⁶ + L₁ + L₂`, `H = Σ dlₕ` (each term below 2³⁰) and `Lᵢ = dᵢlᵢₗ`
+/// (each below 2³¹ in magnitude); `M = ⌊(L₁ + L₂ + 2²³)/2¹⁶⌋` from the
+/// `Lᵢ`'s halves, and then the value is `⌊(H + M)/2⁸⌋`. `H + M` is `⌊(S +
+/// 2²³)/2¹⁶⌋`, below 2³¹ in magnitude (`|S| ≤ 2·(2¹⁵ − 1)·2³¹`), so the
+/// wrapping sums are exact.
+#[inline(always)]
+pub(crate) fn dot2_round_shr24(l1: i32, d1: i32, l2: i32, d2: i32) -> i32 {
+    debug_assert!(d1.unsigned_abs() < 1 << 15 && d2.unsigned_abs() < 1 << 15);
+    if platform::SOFT_MUL64 {
+        dot2_round_shr24_limbs(l1, d1, l2, d2)
+    } else {
+        ((l1 as i64 * d1 as i64 + l2 as i64 * d2 as i64 + (1 << 23)) >> 24) as i32
+    }
+}
+
+/// [`dot2_round_shr24`] from 16-bit halves.
+#[inline(always)]
+pub(crate) fn dot2_round_shr24_limbs(l1: i32, d1: i32, l2: i32, d2: i32) -> i32 {
+    let h = (d1 * (l1 >> 16)).wrapping_add(d2 * (l2 >> 16));
+    let (m1, m2) = (d1 * (l1 & 0xFFFF), d2 * (l2 & 0xFFFF));
+    let m = (m1 >> 16) + (m2 >> 16) + (((m1 & 0xFFFF) + (m2 & 0xFFFF) + (1 << 23)) >> 16);
+    h.wrapping_add(m) >> 8
+}
+
 /// [`dot2_round16`] from 16-bit halves.
 #[inline(always)]
 pub(crate) fn dot2_round16_limbs(a: i32, x: i32, b: i32, y: i32) -> i32 {
@@ -259,9 +287,9 @@ pub(crate) fn mul_hi32_limbs(a: u32, b: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{
-        dot2_round16_limbs, mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs, mul_i32_limbs,
-        mul_i32_u32_limbs, mul_i32_u32_shr31_limbs, mul_u32_i16_limbs, mul_u32_limbs,
-        mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
+        dot2_round16_limbs, dot2_round_shr24_limbs, mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs,
+        mul_i32_limbs, mul_i32_u32_limbs, mul_i32_u32_shr31_limbs, mul_u32_i16_limbs,
+        mul_u32_limbs, mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
     };
     use crate::tests::xorshift;
 
@@ -337,6 +365,18 @@ mod tests {
                     let want = (a32 as i64 * x as i64 + b as i32 as i64 * y as i64 + 8) >> 4;
                     let got = dot2_round16_limbs(a32, x, b as i32, y);
                     assert_eq!(got, want as i32, "{a32} {x} {b} {y}");
+                }
+                for d in [b as i16 as i32, -(1 << 15) + 1, (1 << 15) - 1, 0, 1] {
+                    let d = d.max(-(1 << 15) + 1);
+                    for (l1, l2, d2) in [
+                        (a32, b as i32, d),
+                        (a32, i32::MIN, -d),
+                        (i32::MIN, i32::MIN, d),
+                    ] {
+                        let want = (l1 as i64 * d as i64 + l2 as i64 * d2 as i64 + (1 << 23)) >> 24;
+                        let got = dot2_round_shr24_limbs(l1, d, l2, d2);
+                        assert_eq!(got as i64, want, "{l1} {d} {l2} {d2}");
+                    }
                 }
                 for b15 in [b as i16 as i32 / 2, -(1 << 15) + 1, (1 << 15) - 1] {
                     let want = (a as u32) as i64 * b15 as i64;
