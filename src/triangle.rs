@@ -87,14 +87,14 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         if cols.1 - cols.0 <= 1 && rows.1 - rows.0 <= 1 && covers_none(&p, area, cols, rows) {
             return Ok(());
         }
+        if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(vertex, area) {
+            return Ok(());
+        }
         let c = &mut Corners {
             cache,
             slot,
             vertex,
         };
-        if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(c, area) {
-            return Ok(());
-        }
         self.whole::<M, O, D>(c, &p, area, out, depth, stats)
     }
 
@@ -114,9 +114,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Whether the unsnapped triangle faces otherwise than its snapped
     /// doubled area `a` says, or has no area (rare, out of line).
     #[inline(never)]
-    fn turned_over(&self, c: &Corners, a: i32) -> bool {
+    fn turned_over(&self, vertex: [usize; 3], a: i32) -> bool {
         let rows = &self.stage.rows;
-        let f = c.vertex.map(|i| rows.fine(self.stage.position(i)));
+        let f = vertex.map(|i| rows.fine(self.stage.position(i)));
         let [Some(f0), Some(f1), Some(f2)] = f else {
             return true;
         };
