@@ -17,9 +17,10 @@
 #     mark and the instruction count; the `s1` configuration (standard
 #     scene S1 and nothing more) must print the checksum of the host's S1
 #     frame (exit 1 if not); builds each again through the explicit call;
-#     the report fails (exit 1, after writing it) where any build drawn by
-#     the draw call differs from its explicit-call build: a function's
-#     size, .text or a draw's instructions (firmware/host/src/report/draw_call.rs);
+#     the report fails (exit 1, after writing it) where a build drawn by
+#     the draw call is more than 1 % from its explicit-call build in .text
+#     or a draw's instructions; every difference, a function's size too,
+#     is listed (firmware/host/src/report/draw_call.rs);
 #  6. profiles S1 and S2 on both cores (scripts/firmware_profile.sh; S1's
 #     per-address counts kept for the report's stage table);
 #  7. writes report/firmware_counts.json and report/firmware.md (into
