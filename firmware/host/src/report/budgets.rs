@@ -79,7 +79,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         // The walk's rows, stepped inside the set-up: more often than a
         // triangle's four attributes (depth and three colours).
         4
-    } else if ["setup::", "turned_over", "Rows::fine", "clip::"]
+    } else if ["setup::", "walk::", "turned_over", "Rows::fine", "clip::"]
         .iter()
         .any(|k| f.contains(k))
     {
@@ -174,7 +174,8 @@ pub(super) fn stage_table(
          than twice a triangle set up per row ({rows4} rows: the most any instruction of the \
          row loop ran, short of the pixels), else the set-up's; in the set-up (`set_up`, \
          which walks the rows of most triangles) what ran more often than four times a \
-         triangle set up (its attributes) per row; what ran fewer times than a \
+         triangle set up (its attributes) per row; the edges' quotients found by steps \
+         (`walk::Edge::stepped`, out of line) are the set-up's; what ran fewer times than a \
          quarter of the triangles set up, anywhere, is the draw's own. The library routines' \
          calls are not followed to their callers.\n\n\
          | stage | unit | units | M4F per unit | budget | M0+ per unit | budget |\n\
