@@ -78,27 +78,25 @@ impl Edge {
     /// the walk's start and its switch.
     #[inline(never)]
     fn stepped(ax: i32, dx: i32, dy: i32, n: i32) -> Edge {
-        let (mut step, mut t) = (0, -dx);
-        while t < 0 {
-            step += 1;
-            t += dy;
+        /// `⌈n/d⌉` and its remainder `⌈n/d⌉·d − n ∈ [0, d)`, stepped from
+        /// the estimate `q` (`d > 0`; `q·d − n` within `i32`).
+        #[inline(always)]
+        fn ceil_from(mut q: i32, n: i32, d: i32) -> (i32, i32) {
+            let mut rem = q * d - n;
+            while rem < 0 {
+                q += 1;
+                rem += d;
+            }
+            while rem >= d {
+                q -= 1;
+                rem -= d;
+            }
+            (q, rem)
         }
-        while t >= dy {
-            step -= 1;
-            t -= dy;
-        }
+        let (step, t) = ceil_from(0, dx, dy);
         let d = 16 * dy;
         // |column| < 2¹⁰ and d < 2¹⁹: the product below 2²⁹.
-        let mut q = (ax + 7) >> 4;
-        let mut rem = q * d - n;
-        while rem < 0 {
-            q += 1;
-            rem += d;
-        }
-        while rem >= d {
-            q -= 1;
-            rem -= d;
-        }
+        let (q, rem) = ceil_from((ax + 7) >> 4, n, d);
         Edge {
             q,
             rem,
