@@ -562,6 +562,8 @@ impl<'a> Mesh<'a> {
             }
         }
         let count = self.positions.len();
+        // Every `u16` index is below a count past `u16::MAX` (and the
+        // offset below would not fit).
         if count > usize::from(u16::MAX) {
             return Ok(());
         }
@@ -570,7 +572,7 @@ impl<'a> Mesh<'a> {
         // where `i + 2¹⁶ − count < 2¹⁶` (both terms below 2¹⁶, `count ≥ 1`
         // here or no index passes), so the sums' `|` has no bit from 2¹⁶
         // up exactly where every index is below `count`: an add and an or
-        // an index, where the largest took a compare and a select.
+        // per index, where the largest took a compare and a select.
         let k = 0x1_0000 - count as u32;
         let all = self
             .indices

@@ -52,6 +52,8 @@ impl Edge {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
         let d = 16 * dy;
         let n = (a.0 - 8) * dy + dx * (sy - a.1);
+        // (The sample row lies at or below `a`: `0 ≤ sy − a.y`, the walk's
+        // first row and its switch both.)
         if platform::STEP_QUOTIENTS && dx.unsigned_abs() <= 16 * dy as u32 && sy - a.1 <= 16 {
             return Edge::stepped(a.0, dx, dy, n);
         }

@@ -124,10 +124,10 @@ pub(crate) fn mul_i32_i16(a: i32, b: i16) -> i64 {
     }
 }
 
-/// `a · b`, exactly, for `|b| < 2¹⁵` (`|a · b| < 2⁴⁷`): on the targets
-/// without a 32 × 32 → 64-bit multiply, two 16 × 16 → 32-bit products,
-/// `aₕ·b` and `aₗ·b` (`aₕ`, `aₗ < 2¹⁶` unsigned: each below 2³¹ in
-/// magnitude).
+/// `a · b`, exactly, for `b` an `i16`'s value kept in an `i32` (`|b| <
+/// 2¹⁵`, `|a · b| < 2⁴⁷`): on the targets without a 32 × 32 → 64-bit
+/// multiply, two 16 × 16 → 32-bit products, `aₕ·b` and `aₗ·b` (the halves
+/// `aₕ`, `aₗ < 2¹⁶` unsigned: each product below 2³¹ in magnitude).
 #[inline(always)]
 pub(crate) fn mul_u32_i16(a: u32, b: i32) -> i64 {
     debug_assert!(b.unsigned_abs() < 1 << 15);
@@ -148,9 +148,10 @@ pub(crate) fn mul_u32_i16_limbs(a: u32, b: i32) -> i64 {
 /// products rounded to sixteenths, kept as the low 32 bits. Where a 64-bit
 /// product is made from 16-bit ones, in 32-bit arithmetic: with `a` split
 /// as `aₕ·2¹⁶ + aₗ` (`aₗ` unsigned) and `b` likewise, the sum is `H·2¹⁶ +
-/// L`, with `H = aₕx + bₕy` and `L = aₗx + bₗy` each below 2³¹ in
-/// magnitude; as `H·2¹⁶` is a multiple of 16, the quotient is `H·2¹² +
-/// ⌊(L + 8)/16⌋`.
+/// L`, with `H = aₕx + bₕy` and `L = aₗx + bₗy` each at most `2·2¹⁵·2¹⁴`
+/// and `2·(2¹⁶ − 1)·2¹⁴ = 2³¹ − 2¹⁵` in magnitude (so `L + 8` fits too);
+/// as `H·2¹⁶` is a multiple of 16, the quotient is `H·2¹² + ⌊(L +
+/// 8)/16⌋`.
 #[inline(always)]
 pub(crate) fn dot2_round16(a: i32, x: i32, b: i32, y: i32) -> i32 {
     debug_assert!(x.unsigned_abs() <= 1 << 14 && y.unsigned_abs() <= 1 << 14);
@@ -360,18 +361,23 @@ mod tests {
                 for b16 in [b as i16, i16::MIN, i16::MAX] {
                     assert_eq!(mul_i32_i16_limbs(a32, b16), a32 as i64 * b16 as i64);
                 }
-                for x in [b as i16 as i32 >> 2, -(1 << 14), 1 << 14, 8, -8] {
-                    let y = (a as i16 as i32 >> 2).clamp(-(1 << 14), 1 << 14);
+                for x in [b as i16 as i32 >> 1, -(1 << 14), 1 << 14, 8, -8] {
+                    let y = [a as i16 as i32 >> 1, 1 << 14, -(1 << 14)][k % 3];
                     let want = (a32 as i64 * x as i64 + b as i32 as i64 * y as i64 + 8) >> 4;
                     let got = dot2_round16_limbs(a32, x, b as i32, y);
                     assert_eq!(got, want as i32, "{a32} {x} {b} {y}");
                 }
                 for d in [b as i16 as i32, -(1 << 15) + 1, (1 << 15) - 1, 0, 1] {
                     let d = d.max(-(1 << 15) + 1);
+                    // The second difference its own too, at the ends.
+                    let e = [a as i16 as i32, (1 << 15) - 1, -(1 << 15) + 1][k % 3];
+                    let e = e.max(-(1 << 15) + 1);
                     for (l1, l2, d2) in [
                         (a32, b as i32, d),
                         (a32, i32::MIN, -d),
                         (i32::MIN, i32::MIN, d),
+                        (i32::MAX, b as i32, e),
+                        (i32::MIN, a32, e),
                     ] {
                         let want = (l1 as i64 * d as i64 + l2 as i64 * d2 as i64 + (1 << 23)) >> 24;
                         let got = dot2_round_shr24_limbs(l1, d, l2, d2);
