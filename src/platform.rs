@@ -50,8 +50,9 @@ pub(crate) const fn hardware_div32() -> bool {
 /// give the same spans.
 pub(crate) const TEST_SAMPLES: bool = !hardware_div32();
 
-/// Whether an edge of a gentle slope starting near the walk's first row
-/// finds its small quotients by steps rather than a division
+/// Whether an edge of a gentle slope whose first sample row lies at most a
+/// row below its top finds its small quotients by steps rather than a
+/// division
 /// (`src/walk.rs`): where the core divides in software, a few steps cost
 /// less than a reciprocal and two corrected products.
 pub(crate) const STEP_QUOTIENTS: bool = !hardware_div32();
@@ -62,6 +63,82 @@ pub(crate) const STEP_QUOTIENTS: bool = !hardware_div32();
 #[inline(always)]
 pub(crate) const fn little_endian() -> bool {
     cfg!(target_endian = "little")
+}
+
+/// Bytes from one of the vertex stage's rows to the next
+/// ([`fourteen_rows`]).
+pub(crate) const ROW_BYTES: usize = 56;
+
+/// `⌊V/2¹⁴⌋` of the vertex stage's four rows at position `q` (`V = t +
+/// Σ g·q`, below 2⁴⁵; the floor below 2³¹ in magnitude: the low 32 bits
+/// of the 64-bit shift) on ARMv7-M, in assembly: a row one `ldm` (`t` and
+/// `g` at once), three `smlal` and the shift (compiled, the rows' sixteen
+/// words did not fit the registers beside the vertex loop's and were
+/// reloaded one by one). `None` elsewhere: the caller's Rust takes them.
+///
+/// # Safety
+/// `rows` points to four readable rows [`ROW_BYTES`] apart, each starting
+/// with `t` (an `i64`) and then `g` (three `i32`s).
+#[inline(always)]
+pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32; 4]> {
+    #[cfg(fixshade_thumb2)]
+    {
+        let (x, y, z, w): (i32, i32, i32, i32);
+        // SAFETY: the caller's contract: each `ldm` reads a row's first
+        // five words (`t` low and high, little-endian, then `g`), and the
+        // pointer moves on by `ROW_BYTES` (20 + 36) a row.
+        unsafe {
+            core::arch::asm!(
+                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
+                "smlal r4, r5, r8, {q0}",
+                "smlal r4, r5, r12, {q1}",
+                "smlal r4, r5, lr, {q2}",
+                "lsrs r4, r4, #14",
+                "orr {x}, r4, r5, lsl #18",
+                "add {p}, #36",
+                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
+                "smlal r4, r5, r8, {q0}",
+                "smlal r4, r5, r12, {q1}",
+                "smlal r4, r5, lr, {q2}",
+                "lsrs r4, r4, #14",
+                "orr {y}, r4, r5, lsl #18",
+                "add {p}, #36",
+                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
+                "smlal r4, r5, r8, {q0}",
+                "smlal r4, r5, r12, {q1}",
+                "smlal r4, r5, lr, {q2}",
+                "lsrs r4, r4, #14",
+                "orr {z}, r4, r5, lsl #18",
+                "add {p}, #36",
+                "ldm {p}, {{r4, r5, r8, r12, lr}}",
+                "smlal r4, r5, r8, {q0}",
+                "smlal r4, r5, r12, {q1}",
+                "smlal r4, r5, lr, {q2}",
+                "lsrs r4, r4, #14",
+                "orr {w}, r4, r5, lsl #18",
+                p = inout(reg) rows => _,
+                q0 = in(reg) q[0] as i32,
+                q1 = in(reg) q[1] as i32,
+                q2 = in(reg) q[2] as i32,
+                x = out(reg) x,
+                y = out(reg) y,
+                z = out(reg) z,
+                w = lateout(reg) w,
+                out("r4") _,
+                out("r5") _,
+                out("r8") _,
+                out("r12") _,
+                out("lr") _,
+                options(pure, readonly, nostack),
+            );
+        }
+        Some([x, y, z, w])
+    }
+    #[cfg(not(fixshade_thumb2))]
+    {
+        let _ = (rows, q);
+        None
+    }
 }
 
 /// `x.leading_zeros()`. ARMv6-M and ARMv8-M Baseline have no

@@ -61,19 +61,23 @@ const XY_SHIFT: i32 = 16;
 
 /// One row: `V(q) = Σ g[c]·q[c] + t`, true value `V·2^e`, with `|g| ≤
 /// 2²⁸` and `|t| ≤ 2⁴³`, so `|V| < 2⁴⁵`. Kept also split at bit 14 for
-/// [`Row::fourteen`].
+/// [`Row::fourteen`]. (`repr(C)`, `t` and `g` first, [`platform::ROW_BYTES`]
+/// a row: the platform's loop reads them, [`platform::fourteen_rows`].)
+#[repr(C)]
 #[derive(Clone, Copy, Debug)]
 struct Row {
-    g: [i32; 3],
     t: i64,
-    e: i32,
+    g: [i32; 3],
     /// `g >> 14` and `t >> 14`.
     gh: [i32; 3],
     th: i32,
     /// `g & 0x3FFF` and `t & 0x3FFF`.
     gl: [i32; 3],
     tl: i32,
+    e: i32,
 }
+
+const _: () = assert!(core::mem::size_of::<Row>() == platform::ROW_BYTES);
 
 impl Row {
     /// The row of coefficients `c` and constant `k` at exponent `e`.
@@ -209,6 +213,11 @@ impl Rows {
     /// vertex; unrolled, the four rows' coefficients spill).
     #[inline(always)]
     fn fourteen(&self, q: [i16; 3]) -> [i32; 4] {
+        // SAFETY: four rows `Row`'s size apart, each `t` and `g` first
+        // (`repr(C)`).
+        if let Some(v) = unsafe { platform::fourteen_rows(self.r.as_ptr().cast(), q) } {
+            return v;
+        }
         let mut out = [0; 4];
         for (o, r) in out.iter_mut().zip(&self.r) {
             *o = r.fourteen(q);
