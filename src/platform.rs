@@ -84,38 +84,35 @@ pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32;
     #[cfg(fixshade_thumb2)]
     {
         let (x, y, z, w): (i32, i32, i32, i32);
+        // One row into output `o`: `t` and `g` loaded (the pointer moved
+        // on by 20 bytes), the three products added to `t`, the floor of
+        // the 64-bit sum over 2¹⁴ kept in 32 bits.
+        macro_rules! row {
+            ($o:literal) => {
+                concat!(
+                    "ldm {p}!, {{r4, r5, r8, r12, lr}}\n",
+                    "smlal r4, r5, r8, {q0}\n",
+                    "smlal r4, r5, r12, {q1}\n",
+                    "smlal r4, r5, lr, {q2}\n",
+                    "lsrs r4, r4, #14\n",
+                    "orr {",
+                    $o,
+                    "}, r4, r5, lsl #18",
+                )
+            };
+        }
         // SAFETY: the caller's contract: each `ldm` reads a row's first
         // five words (`t` low and high, little-endian, then `g`), and the
         // pointer moves on by `ROW_BYTES` (20 + 36) a row.
         unsafe {
             core::arch::asm!(
-                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
-                "smlal r4, r5, r8, {q0}",
-                "smlal r4, r5, r12, {q1}",
-                "smlal r4, r5, lr, {q2}",
-                "lsrs r4, r4, #14",
-                "orr {x}, r4, r5, lsl #18",
+                row!("x"),
                 "add {p}, #36",
-                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
-                "smlal r4, r5, r8, {q0}",
-                "smlal r4, r5, r12, {q1}",
-                "smlal r4, r5, lr, {q2}",
-                "lsrs r4, r4, #14",
-                "orr {y}, r4, r5, lsl #18",
+                row!("y"),
                 "add {p}, #36",
-                "ldm {p}!, {{r4, r5, r8, r12, lr}}",
-                "smlal r4, r5, r8, {q0}",
-                "smlal r4, r5, r12, {q1}",
-                "smlal r4, r5, lr, {q2}",
-                "lsrs r4, r4, #14",
-                "orr {z}, r4, r5, lsl #18",
+                row!("z"),
                 "add {p}, #36",
-                "ldm {p}, {{r4, r5, r8, r12, lr}}",
-                "smlal r4, r5, r8, {q0}",
-                "smlal r4, r5, r12, {q1}",
-                "smlal r4, r5, lr, {q2}",
-                "lsrs r4, r4, #14",
-                "orr {w}, r4, r5, lsl #18",
+                row!("w"),
                 p = inout(reg) rows => _,
                 q0 = in(reg) q[0] as i32,
                 q1 = in(reg) q[1] as i32,
