@@ -66,7 +66,8 @@ pub(crate) const fn little_endian() -> bool {
 }
 
 /// Bytes from one of the vertex stage's rows to the next
-/// ([`fourteen_rows`]).
+/// ([`fourteen_rows`]; only its assembly reads rows by this stride).
+#[cfg_attr(not(fixshade_thumb2), allow(dead_code))]
 pub(crate) const ROW_BYTES: usize = 56;
 
 /// `⌊V/2¹⁴⌋` of the vertex stage's four rows at position `q` (`V = t +
@@ -103,17 +104,18 @@ pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32;
         }
         // SAFETY: the caller's contract: each `ldm` reads a row's first
         // five words (`t` low and high, little-endian, then `g`), and the
-        // pointer moves on by `ROW_BYTES` (20 + 36) a row.
+        // pointer moves on by `ROW_BYTES` (20 and the rest) a row.
         unsafe {
             core::arch::asm!(
                 row!("x"),
-                "add {p}, #36",
+                "add {p}, #{skip}",
                 row!("y"),
-                "add {p}, #36",
+                "add {p}, #{skip}",
                 row!("z"),
-                "add {p}, #36",
+                "add {p}, #{skip}",
                 row!("w"),
                 p = inout(reg) rows => _,
+                skip = const ROW_BYTES - 20,
                 q0 = in(reg) q[0] as i32,
                 q1 = in(reg) q[1] as i32,
                 q2 = in(reg) q[2] as i32,
