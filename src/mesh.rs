@@ -567,8 +567,8 @@ impl<'a> Mesh<'a> {
         if count > usize::from(u16::MAX) {
             return Ok(());
         }
-        // All indices at once, in one pass the compiler vectorises; the
-        // search only for a mesh that fails. Index `i < count` exactly
+        // All indices at once, in one pass; the search only for a mesh
+        // that fails. Index `i < count` exactly
         // where `i + 2¹⁶ − count < 2¹⁶` (both terms below 2¹⁶, `count ≥ 1`
         // here or no index passes), so the sums' `|` has no bit from 2¹⁶
         // up exactly where every index is below `count`: an add and an or

@@ -52,9 +52,8 @@ pub(crate) const TEST_SAMPLES: bool = !hardware_div32();
 
 /// Whether an edge of a gentle slope whose first sample row lies at most a
 /// row below its top finds its small quotients by steps rather than a
-/// division
-/// (`src/walk.rs`): where the core divides in software, a few steps cost
-/// less than a reciprocal and two corrected products.
+/// division (`src/walk.rs`): where the core divides in software, a few
+/// steps cost less than a reciprocal and two corrected products.
 pub(crate) const STEP_QUOTIENTS: bool = !hardware_div32();
 
 /// The target stores integers little-endian, the byte order of the mesh
@@ -73,7 +72,7 @@ pub(crate) const ROW_BYTES: usize = 56;
 /// `⌊V/2¹⁴⌋` of the vertex stage's four rows at position `q` (`V = t +
 /// Σ g·q`, below 2⁴⁵; the floor below 2³¹ in magnitude: the low 32 bits
 /// of the 64-bit shift) on ARMv7-M, in assembly: a row one `ldm` (`t` and
-/// `g` at once), three `smlal` and the shift (compiled, the rows' sixteen
+/// `g` at once), three `smlal` and the shift (compiled, the rows' twenty
 /// words did not fit the registers beside the vertex loop's and were
 /// reloaded one by one). `None` elsewhere: the caller's Rust takes them.
 ///

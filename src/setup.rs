@@ -19,7 +19,7 @@
 //! integers, so at every pixel they equal the same sum taken without a
 //! bound, which differs from the exact plane by at most `(½ + (|d₁| +
 //! |d₂|)·2⁻²⁴)·(|c − c₀| + |r − r₀| + 1) + 1` units, `d` the attribute's
-//! differences from vertex 0 ([`gradients`] bounds each gradient's error;
+//! differences from vertex 0 ([`lambdas`] bounds each gradient's error;
 //! `src/tests/coverage.rs` holds the bound at the limits). At a covered
 //! pixel the exact plane lies between the vertex values, so the integer
 //! plane is that close to their range there, whatever the gradients'
@@ -31,7 +31,7 @@
 //! A gradient is `256·N/A` (`A` the doubled area in 1/256 pixel², `N` the
 //! attribute differences' cross product with the sides, below 2⁴²): from
 //! one reciprocal of `|A|` ([`recip_fast`]) and the barycentric gradients
-//! ([`gradients`]), or, where those do not fit `i32` (a sliver, a steep
+//! ([`gradient`]), or, where those do not fit `i32` (a sliver, a steep
 //! plane), from the exact division, kept modulo 2³². Both are functions of
 //! the vertices alone, the same on every core.
 
@@ -370,7 +370,7 @@ fn offset(gx: i32, gy: i32, o: (i32, i32)) -> i32 {
     dot2_round16(gx, o.0, gy, o.1)
 }
 
-/// [`gradients`] from the exact quotients `round(256·N/A)`, `N` the
+/// [`gradient`]'s values from the exact quotients `round(256·N/A)`, `N` the
 /// attribute differences' cross products with the sides (below 2⁴²), kept
 /// modulo 2³²: a sliver's or a steep plane's (rare, out of line); with
 /// the offsets to the centre `o` sixteenths from vertex 0, from the
@@ -530,8 +530,8 @@ mod tests {
 
     /// Each gradient is `⌊(d₁·Λ₁ + d₂·Λ₂ + 2²³)/2²⁴⌋` of the 64-bit
     /// products, or `None` where that does not fit `i32`, whichever
-    /// products make it: differences that fit `i16` (at their ends too)
-    /// and wider ones, `Λ` of every size.
+    /// products make it: differences within ±(2¹⁵ − 1), the 32-bit steps'
+    /// (at their ends too), and wider ones, `Λ` of every size.
     #[test]
     fn gradients_are_the_wide_products() {
         let mut rnd = xorshift(0x0bad_5eed_1234_4321);

@@ -10,7 +10,7 @@
 //! as produced with full relative precision by
 //! [`Unit3::half_dist_sq`](crate::Unit3::half_dist_sq). `δ ∈ [0, 2]`
 //! (raw `0 ..= 2²⁹`) covers `x ∈ [−1, 1]`; `δ ≥ 1` means `x ≤ 0`.
-//! [`pow_from_cos`] is the convenience form for callers that only have `x`.
+//! `pow_from_cos` (the tests') is the convenience form for callers that only have `x`.
 //!
 //! # Method
 //!

@@ -10,7 +10,9 @@
 //! sample lies on a horizontal top edge is drawn, one on a horizontal
 //! bottom edge is not. That is the top-left rule: two triangles sharing an
 //! edge draw each sample on it once. Every bound is exact: an edge's
-//! column is an integer quotient stepped with its remainder row by row.
+//! column is an integer quotient stepped with its remainder row by row;
+//! where the core divides in software, a gentle edge finds its quotient
+//! and step by steps rather than a division ([`Edge::new`]), the same ones.
 //! A triangle of a few samples may instead have each sample tested against
 //! its three edge functions ([`EdgeFunctions`]): the same rule, the same
 //! spans, without the quotients (where the core divides in software).
