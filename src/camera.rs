@@ -8,6 +8,7 @@
 
 use crate::mesh::Bounds;
 use crate::num::widening::mul_i32;
+use crate::platform;
 use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
 
 /// Why a camera could not be built.
@@ -474,6 +475,8 @@ impl Camera {
             let mut reach = row[3].unsigned_abs() as u64;
             for c in 0..3 {
                 reach += (row[c].unsigned_abs() as u64 * o[c]) >> COORD_FRAC;
+                // Once a draw: one body, not nine.
+                platform::keep_loop_rolled();
             }
             d = d.max(reach);
         }

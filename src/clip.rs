@@ -31,6 +31,7 @@ use crate::material::Specular;
 use crate::num::division::floor_div;
 use crate::num::Wide;
 use crate::options::{DrawStats, ShadingMode};
+use crate::platform;
 use crate::setup::{Rect, ATTR};
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
@@ -81,7 +82,8 @@ fn ratio30(num: Wide, den: Wide) -> i64 {
 }
 
 /// `a + round((b − a)·t/2³⁰)` for `0 ≤ t ≤ 2³⁰` and `|b − a| < 2⁶²`: the
-/// difference in 31-bit halves.
+/// difference in 31-bit halves. Out of line: four calls a cut corner.
+#[inline(never)]
 fn lerp30(a: i64, b: i64, t: i64) -> i64 {
     let d = b - a;
     let (dh, dl) = (d >> 31, d & ((1 << 31) - 1));
@@ -114,16 +116,17 @@ where
     // −64·W·H, whose sign the window-space area of the triangle (and of each
     // piece cut from it in front of the near plane) has: negative for a
     // front face, as the set-up's doubled area.
-    let det = {
-        let w = |k: usize, r: usize| Wide::new(h[k][r], 0);
-        let minor = |r: usize, s: usize, i: usize, j: usize| {
-            w(i, r).times(w(j, s)).add(w(j, r).times(w(i, s)).neg())
-        };
-        w(0, 0)
-            .times(minor(1, 3, 1, 2))
-            .add(w(1, 0).times(minor(1, 3, 2, 0)))
-            .add(w(2, 0).times(minor(1, 3, 0, 1)))
-    };
+    // Expanded along the `X` column: Σₖ Xₖ·(Yₖ₊₁·Wₖ₊₂ − Yₖ₊₂·Wₖ₊₁), one
+    // pass of a rolled loop a vertex.
+    let w = |k: usize, r: usize| Wide::new(h[k % 3][r], 0);
+    let mut det = Wide::ZERO;
+    for k in 0..3 {
+        let minor = w(k + 1, 1)
+            .times(w(k + 2, 3))
+            .add(w(k + 2, 1).times(w(k + 1, 3)).neg());
+        det = det.add(w(k, 0).times(minor));
+        platform::keep_loop_rolled();
+    }
     if det.m == 0 || (det.m > 0 && f.options.cull) {
         return Ok(());
     }

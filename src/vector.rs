@@ -814,26 +814,20 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     // two, below 2⁶³: `i64` holds them exactly.
     let a = |r: usize, c: usize| m.m[r][c].max(-i32::MAX);
     let mut cof = [[0i64; 3]; 3];
+    // The largest cofactor and the largest entry, in magnitude.
+    let (mut max, mut entries) = (0u64, 0u32);
     for (r, row) in cof.iter_mut().enumerate() {
         for (c, out) in row.iter_mut().enumerate() {
             let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
             let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
             *out = mul_i32(a(r1, c1), a(r2, c2)) - mul_i32(a(r1, c2), a(r2, c1));
+            max = max.max(out.unsigned_abs());
+            entries = entries.max(m.m[r][c].unsigned_abs());
             // Once a draw: nine passes of one body, not nine bodies.
             platform::keep_loop_rolled();
         }
     }
     let bits = |v: u64| 64 - v.leading_zeros() as i32;
-    let max = cof
-        .iter()
-        .flatten()
-        .map(|v| v.unsigned_abs())
-        .max()
-        .unwrap_or(0);
-    let entries = (0..9)
-        .map(|k| m.m[k / 3][k % 3].unsigned_abs())
-        .max()
-        .unwrap_or(0);
     let (sign, det_bits) = det_sign_bits([a(0, 0), a(0, 1), a(0, 2)], cof[0])?;
     // κ = ‖M‖·‖M⁻¹‖ with ‖M⁻¹‖ = ‖cof‖/|det|, from the largest entries'
     // and the determinant's bit lengths: within a factor of 36 of the
@@ -847,10 +841,10 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     let sh = (bits(max) - 48).max(0);
     let max = (max >> sh) as i64;
     let mut out = [[0i16; 3]; 3];
-    for r in 0..3 {
-        for c in 0..3 {
-            out[r][c] = ((((cof[r][c] >> sh) * sign) << 14) / max) as i16;
-        }
+    for (o, v) in out.iter_mut().flatten().zip(cof.iter().flatten()) {
+        *o = ((((v >> sh) * sign) << 14) / max) as i16;
+        // Once a draw: nine passes of one division, not nine bodies.
+        platform::keep_loop_rolled();
     }
     Some(out)
 }

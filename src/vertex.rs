@@ -151,43 +151,65 @@ impl Rows {
     /// folded in (`mv·(q·2⁻¹⁵, 1)` is the eye position, raw `I8F24`).
     pub(crate) fn new(mv: &Mat4, p: &ProjectionCoeffs, w: u32, h: u32) -> Rows {
         let m = &mv.m;
+        // Once a draw: every loop below is kept rolled, one body a row or
+        // a column, for flash (unrolled, the rows' `Wide` sums took 5 KB).
         let eye = |r: usize, c: usize| Wide::new(m[r][c] as i64, if c < 3 { -15 } else { 0 });
         // w_c = −z_e (perspective) or 1 (orthographic).
-        let wc: [Wide; 4] = if p.perspective {
-            [0, 1, 2, 3].map(|c| eye(2, c).neg())
-        } else {
-            [Wide::ZERO, Wide::ZERO, Wide::ZERO, Wide::new(1 << 24, 0)]
-        };
-        // A clip row `s·e_r·2⁻²⁴ + k`, scaled by `scale`, plus `off·w_c`.
-        let clip = |r: usize, s: i32, k: i32, scale: i64, off: i64| {
-            [0, 1, 2, 3].map(|c| {
-                let mut v = Wide::new(s as i64 * m[r][c] as i64, if c < 3 { -39 } else { -24 });
-                if c == 3 {
-                    v = v.add(Wide::new(k as i64, 0));
-                }
-                v.mul(scale).add(wc[c].mul(off))
-            })
-        };
+        let mut wc = [Wide::ZERO; 4];
+        for (c, v) in wc.iter_mut().enumerate() {
+            *v = if p.perspective {
+                eye(2, c).neg()
+            } else if c == 3 {
+                Wide::new(1 << 24, 0)
+            } else {
+                Wide::ZERO
+            };
+            platform::keep_loop_rolled();
+        }
         // The set-up's origin: the pixel corner at or left of and above the
         // viewport's centre, so that pixel centres lie at 16k + 8.
         let (w, h) = (w as i64, h as i64);
         let (ox, oy) = (16 * (w >> 1), 16 * (h >> 1));
-        let x = clip(0, p.sx, p.tx, 8 * w, 8 * w - ox);
-        let y = clip(1, p.sy, p.ty, -8 * h, 8 * h - oy);
-        let z = clip(2, p.a, p.b, DEPTH_K, 1 << 23);
-        let split = |v: [Wide; 4]| ([v[0], v[1], v[2]], v[3]);
-        let rows = [x, y, z, wc].map(split);
-        let natural = rows.map(|(c, k)| Row::exponent(c, k));
+        // Clip row `r` is `s·e_r·2⁻²⁴ + k`; each window row is one scaled
+        // by `scale`, plus `off·w_c`; the fourth is `w_c`.
+        let clip = [
+            (p.sx, p.tx, 8 * w, 8 * w - ox),
+            (p.sy, p.ty, -8 * h, 8 * h - oy),
+            (p.a, p.b, DEPTH_K, 1 << 23),
+        ];
+        let mut rows = [[Wide::ZERO; 4]; 4];
+        rows[3] = wc;
+        for (r, &(s, k, scale, off)) in clip.iter().enumerate() {
+            for (c, out) in rows[r].iter_mut().enumerate() {
+                let mut v = Wide::new(s as i64 * m[r][c] as i64, if c < 3 { -39 } else { -24 });
+                if c == 3 {
+                    v = v.add(Wide::new(k as i64, 0));
+                }
+                *out = v.mul(scale).add(wc[c].mul(off));
+                platform::keep_loop_rolled();
+            }
+        }
+        let split = |v: &[Wide; 4]| ([v[0], v[1], v[2]], v[3]);
+        let mut natural = [0; 4];
+        for (n, v) in natural.iter_mut().zip(&rows) {
+            let (c, k) = split(v);
+            *n = Row::exponent(c, k);
+            platform::keep_loop_rolled();
+        }
         let ew = natural[3];
         let forced = [ew + XY_SHIFT, ew + XY_SHIFT, ew + Z_SHIFT, ew];
         let fast = (0..4).all(|k| natural[k] <= forced[k]);
         let e = if fast { forced } else { natural };
-        let r = [0, 1, 2, 3].map(|k| Row::at(rows[k].0, rows[k].1, e[k]));
         let mut out = Rows {
-            r,
+            r: [Row::at([Wide::ZERO; 3], Wide::ZERO, 0); 4],
             fast,
             contained: false,
         };
+        for (k, row) in out.r.iter_mut().enumerate() {
+            let (c, t) = split(&rows[k]);
+            *row = Row::at(c, t, e[k]);
+            platform::keep_loop_rolled();
+        }
         out.contained = fast && Rows::corners().all(|q| out.lean(out.exact(q)));
         out
     }
@@ -226,8 +248,9 @@ impl Rows {
         out
     }
 
-    /// The exact rows of position `q`.
-    #[inline]
+    /// The exact rows of position `q` (once a draw, for the box's corners,
+    /// and on the rare path: out of line).
+    #[inline(never)]
     pub(crate) fn exact(&self, q: [i16; 3]) -> [i64; 4] {
         [0, 1, 2, 3].map(|k| self.r[k].exact(q))
     }
@@ -375,7 +398,8 @@ fn exact_round_xy(x: i32, y: i32, w: i32) -> (i32, i32) {
 /// `round(v·2^s / w)`, half up, for `|v| < 2⁴⁶` and `0 < w < 2⁴⁶`, if its
 /// magnitude is below 2⁴⁰: by long division in 16-bit digits where
 /// `v·2^s` does not fit (each step's remainder below `w`, shifted by 16
-/// below 2⁶²).
+/// below 2⁶²). Out of line: three calls a corner on the rare path.
+#[inline(never)]
 fn quotient(v: i64, s: i32, w: i64) -> Option<i64> {
     if s < 0 {
         // ⌊2v/(w·2^-s)⌋ = ⌊⌊2v/w⌋/2^-s⌋ (nested floors).

@@ -87,6 +87,7 @@ impl Wide {
     }
 
     /// `|value| < 2^bits()` (a very negative number for zero).
+    #[inline(never)]
     pub(crate) fn bits(self) -> i32 {
         if self.m == 0 {
             return -(1 << 20);
