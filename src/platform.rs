@@ -66,19 +66,33 @@ pub(crate) const fn little_endian() -> bool {
 
 /// Bytes from one of the vertex stage's rows to the next
 /// ([`fourteen_rows`]; only its assembly reads rows by this stride).
-#[cfg_attr(not(fixshade_thumb2), allow(dead_code))]
+#[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
 pub(crate) const ROW_BYTES: usize = 56;
+
+/// Where a row's split coefficients start ([`fourteen_rows`] on ARMv6-M):
+/// `gₕ` (three `i32`s) and `tₕ`, then `gₗ` and `tₗ`, eight words.
+#[cfg_attr(not(fixshade_thumb1), allow(dead_code))]
+pub(crate) const ROW_SPLIT: usize = 20;
 
 /// `⌊V/2¹⁴⌋` of the vertex stage's four rows at position `q` (`V = t +
 /// Σ g·q`, below 2⁴⁵; the floor below 2³¹ in magnitude: the low 32 bits
-/// of the 64-bit shift) on ARMv7-M, in assembly: a row one `ldm` (`t` and
-/// `g` at once), three `smlal` and the shift (compiled, the rows' twenty
-/// words did not fit the registers beside the vertex loop's and were
-/// reloaded one by one). `None` elsewhere: the caller's Rust takes them.
+/// of the 64-bit shift), in assembly:
+/// - on ARMv7-M a row is one `ldm` (`t` and `g` at once), three `smlal`
+///   and the shift;
+/// - on ARMv6-M, which has no 64-bit product, a row is its split halves
+///   (`V = 2¹⁴·(Σ gₕq + tₕ) + (Σ gₗq + tₗ)`, both sums within `i32`: the
+///   vertex stage's `Row::fourteen`), two `ldm` of four words, six `muls`
+///   and the sums: 19 instructions a row.
+///
+/// Compiled, the rows' words did not fit the registers beside the vertex
+/// loop's and were reloaded one by one (on ARMv6-M, 127 instructions a
+/// vertex for the four rows). `None` elsewhere: the caller's Rust takes
+/// them.
 ///
 /// # Safety
 /// `rows` points to four readable rows [`ROW_BYTES`] apart, each starting
-/// with `t` (an `i64`) and then `g` (three `i32`s).
+/// with `t` (an `i64`) and then `g` (three `i32`s), with the split
+/// coefficients at [`ROW_SPLIT`].
 #[inline(always)]
 pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32; 4]> {
     #[cfg(fixshade_thumb2)]
@@ -132,7 +146,77 @@ pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32;
         }
         Some([x, y, z, w])
     }
-    #[cfg(not(fixshade_thumb2))]
+    #[cfg(fixshade_thumb1)]
+    {
+        let (x, y, z, w): (i32, i32, i32, i32);
+        // One row into register `o`: the high sum kept in r12 while the low
+        // one is made, then `hi + (lo >> 14)`; the pointer on to the next
+        // row's split coefficients.
+        macro_rules! row {
+            ($o:literal) => {
+                concat!(
+                    "ldm r0!, {{r4, r5, r6, r7}}\n",
+                    "muls r4, r1, r4\n",
+                    "muls r5, r2, r5\n",
+                    "muls r6, r3, r6\n",
+                    "adds r4, r4, r5\n",
+                    "adds r4, r4, r6\n",
+                    "adds r4, r4, r7\n",
+                    "mov r12, r4\n",
+                    "ldm r0!, {{r4, r5, r6, r7}}\n",
+                    "muls r4, r1, r4\n",
+                    "muls r5, r2, r5\n",
+                    "muls r6, r3, r6\n",
+                    "adds r4, r4, r5\n",
+                    "adds r4, r4, r6\n",
+                    "adds r4, r4, r7\n",
+                    "asrs r4, r4, #14\n",
+                    "add r4, r12\n",
+                    "mov ",
+                    $o,
+                    ", r4\n",
+                    "adds r0, #{skip}",
+                )
+            };
+        }
+        // SAFETY: the caller's contract: each `ldm` pair reads a row's
+        // eight split words, and the pointer moves on by `ROW_BYTES` a
+        // row. r6 and r7, which `asm!` may not name, are pushed and popped
+        // around their use; sp is restored.
+        unsafe {
+            core::arch::asm!(
+                "push {{r6, r7}}",
+                "adds r0, #{split}",
+                row!("r8"),
+                row!("r9"),
+                row!("r10"),
+                row!("r11"),
+                // The four floors out in r0–r3 (high registers may not be
+                // an operand in Thumb-1 code).
+                "mov r0, r8",
+                "mov r1, r9",
+                "mov r2, r10",
+                "mov r3, r11",
+                "pop {{r6, r7}}",
+                split = const ROW_SPLIT,
+                skip = const ROW_BYTES - 32,
+                inout("r0") rows => x,
+                inout("r1") q[0] as i32 => y,
+                inout("r2") q[1] as i32 => z,
+                inout("r3") q[2] as i32 => w,
+                out("r4") _,
+                out("r5") _,
+                out("r8") _,
+                out("r9") _,
+                out("r10") _,
+                out("r11") _,
+                out("r12") _,
+                options(readonly),
+            );
+        }
+        Some([x, y, z, w])
+    }
+    #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
     {
         let _ = (rows, q);
         None

@@ -78,6 +78,8 @@ struct Row {
 }
 
 const _: () = assert!(core::mem::size_of::<Row>() == platform::ROW_BYTES);
+const _: () = assert!(core::mem::offset_of!(Row, gh) == platform::ROW_SPLIT);
+const _: () = assert!(core::mem::offset_of!(Row, tl) == platform::ROW_SPLIT + 28);
 
 impl Row {
     /// The row of coefficients `c` and constant `k` at exponent `e`.
