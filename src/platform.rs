@@ -24,15 +24,6 @@ use crate::planes::{Planes, Row};
 /// `target_feature` for the instruction.
 pub(crate) const SOFT_MUL64: bool = cfg!(fixshade_soft_mul64);
 
-/// The core does its arithmetic in eight registers (ARMv6-M and ARMv8-M
-/// Baseline, the targets of [`SOFT_MUL64`]: most instructions, `muls`
-/// among them, reach `r0`–`r7` only), so a loop whose body holds more
-/// values than that spills them in every iteration. Where this holds,
-/// the vertex stage computes a batch of vertices' rows in one loop and
-/// their divisions in another; with thirteen registers one loop of both
-/// is the cheaper.
-pub(crate) const FEW_REGISTERS: bool = SOFT_MUL64;
-
 /// The core divides 32-bit numbers in one instruction: every target but
 /// ARMv6-M (the Cortex-M0 and M0+), where the build script sets
 /// `fixshade_soft_div32`; elsewhere a division is a library call of some

@@ -684,35 +684,17 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
         CachedVertex::of(self.rows.window(self.position(i)))
     }
 
-    /// Projects every vertex of the mesh into `cache` (one per vertex).
-    /// On a core with [`FEW_REGISTERS`](platform::FEW_REGISTERS), a
-    /// contained mesh's vertices go in batches, their rows first and their
-    /// divisions after, each in a loop of its own: each loop's values fit
-    /// the registers, where one loop of both spilled them (the M0+'s S1:
-    /// 374 instructions a vertex against 424).
+    /// Projects every vertex of the mesh into `cache` (one per vertex),
+    /// one loop: with the rows in assembly ([`platform::fourteen_rows`]),
+    /// a vertex's values fit the registers. (On the M0+, batches of rows
+    /// first and divisions after, each a loop of its own, had been cheaper
+    /// while the rows were compiled: 374 instructions a vertex against
+    /// 424; with the rows in assembly one loop costs less than the
+    /// batches.)
     #[inline(never)]
     pub(crate) fn project_all(&self, cache: &mut [CachedVertex]) {
-        let rows = &self.rows;
-        if !platform::FEW_REGISTERS || !rows.fast {
-            for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
-                *c = CachedVertex::of(rows.window(*q));
-            }
-            return;
-        }
-        const BATCH: usize = 16;
-        let mut v = [[0i32; 4]; BATCH];
-        for (cs, qs) in cache
-            .chunks_mut(BATCH)
-            .zip(self.mesh.positions.chunks(BATCH))
-        {
-            for (v, q) in v.iter_mut().zip(qs) {
-                *v = rows.fourteen(*q);
-                platform::keep_loop_rolled();
-            }
-            for (c, v) in cs.iter_mut().zip(&v) {
-                *c = CachedVertex::of(rows.window_of(*v));
-                platform::keep_loop_rolled();
-            }
+        for (c, q) in cache.iter_mut().zip(self.mesh.positions) {
+            *c = CachedVertex::of(self.rows.window(*q));
         }
     }
 
