@@ -140,11 +140,10 @@ pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32;
     #[cfg(fixshade_thumb1)]
     {
         let (x, y, z, w): (i32, i32, i32, i32);
-        // One row into register `o`: the high sum kept in r12 while the low
-        // one is made, then `hi + (lo >> 14)`; the pointer on to the next
-        // row's split coefficients.
-        macro_rules! row {
-            ($o:literal) => {
+        // One split half of a row into r4: three coefficients and the
+        // constant loaded (the pointer moved on by 16 bytes), `Σ g·q + t`.
+        macro_rules! half {
+            () => {
                 concat!(
                     "ldm r0!, {{r4, r5, r6, r7}}\n",
                     "muls r4, r1, r4\n",
@@ -153,14 +152,18 @@ pub(crate) unsafe fn fourteen_rows(rows: *const u8, q: [i16; 3]) -> Option<[i32;
                     "adds r4, r4, r5\n",
                     "adds r4, r4, r6\n",
                     "adds r4, r4, r7\n",
+                )
+            };
+        }
+        // One row into register `o`: the high sum kept in r12 while the low
+        // one is made, then `hi + (lo >> 14)`; the pointer on to the next
+        // row's split coefficients.
+        macro_rules! row {
+            ($o:literal) => {
+                concat!(
+                    half!(),
                     "mov r12, r4\n",
-                    "ldm r0!, {{r4, r5, r6, r7}}\n",
-                    "muls r4, r1, r4\n",
-                    "muls r5, r2, r5\n",
-                    "muls r6, r3, r6\n",
-                    "adds r4, r4, r5\n",
-                    "adds r4, r4, r6\n",
-                    "adds r4, r4, r7\n",
+                    half!(),
                     "asrs r4, r4, #14\n",
                     "add r4, r12\n",
                     "mov ",
