@@ -564,5 +564,5 @@ where
         return Ok(());
     }
     // SAFETY: every slot was checked just above.
-    unsafe { f.triangle::<M, _, D>(cache, slot, vertex, out, depth, stats) }
+    unsafe { f.triangle::<M, _, D>(cache, slot, vertex, None, out, depth, stats) }
 }

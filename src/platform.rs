@@ -755,6 +755,184 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     run.covered - run.failed
 }
 
+/// Whether [`skip_culled`] is assembly here (the whole-frame loop takes
+/// it), not `None`.
+pub(crate) const SKIPS_CULLED: bool = cfg!(any(fixshade_thumb1, fixshade_thumb2));
+
+/// Where a vertex cache entry keeps its flags word ([`skip_culled`]: the
+/// word at this byte offset, the rare path's flag at bit [`RARE_BIT`]).
+#[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
+pub(crate) const FLAGS_AT: usize = 12;
+
+/// The rare path's flag in a cache entry's flags word.
+#[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
+pub(crate) const RARE_BIT: u32 = 22;
+
+/// The first triangle of `tris` (`[u16; 3]` vertex indices, up to `end`)
+/// the whole-frame loop must look at, and its doubled area: one with a
+/// corner the rare path takes (flag [`RARE_BIT`] of the entry's word at
+/// [`FLAGS_AT`]; its area not found), or one whose kept window positions
+/// (an entry's first word: `x` in the low half, `y` in the high) make a
+/// doubled area that is neither 0 nor culled (`area > 0` with `cull`);
+/// `end` where there is none. In assembly: the cull of a fine mesh's
+/// triangles is most of its triangle loop, and compiled, that loop holds
+/// a kept triangle's values on the stack across every culled one (M0+:
+/// 59 instructions a triangle, M4F: 42). On ARMv7-M the area is two
+/// `ssub16` and one `smusdx` of the packed positions (the differences
+/// within ±2¹⁵ in the guard band, the products' difference within
+/// `i32`): the same value as `(x₁ − x₀)(y₂ − y₀) − (x₂ − x₀)(y₁ − y₀)`.
+/// `None` elsewhere: the caller's Rust tests each triangle.
+///
+/// # Safety
+/// `tris ..= end` is one slice's range; every index in it is below the
+/// length of the cache at `cache`, whose entries are 16 bytes, the
+/// window position first.
+#[inline(always)]
+#[allow(unused_variables)]
+pub(crate) unsafe fn skip_culled(
+    tris: *const [u16; 3],
+    end: *const [u16; 3],
+    cache: *const u8,
+    cull: bool,
+) -> Option<(*const [u16; 3], i32)> {
+    #[cfg(fixshade_thumb2)]
+    {
+        let (at, area): (*const [u16; 3], i32);
+        // SAFETY: the caller's contract: each pass reads one triangle's
+        // three indices and, for each, its entry's first word and flags
+        // word; it stops at `end`.
+        unsafe {
+            core::arch::asm!(
+                "cmp {p}, {end}",
+                "beq 9f",
+                "1:",
+                "ldrh {a}, [{p}]",
+                "ldrh {b}, [{p}, #2]",
+                "ldrh {c}, [{p}, #4]",
+                "add {a}, {base}, {a}, lsl #4",
+                "add {b}, {base}, {b}, lsl #4",
+                "add {c}, {base}, {c}, lsl #4",
+                "ldr {t}, [{a}, #{flags}]",
+                "ldr {u}, [{b}, #{flags}]",
+                "orrs {t}, {u}",
+                "ldr {u}, [{c}, #{flags}]",
+                "orrs {t}, {u}",
+                "tst {t}, #{rare}",
+                "bne 9f",
+                "ldr {a}, [{a}]",
+                "ldr {b}, [{b}]",
+                "ldr {c}, [{c}]",
+                "ssub16 {b}, {b}, {a}",
+                "ssub16 {c}, {c}, {a}",
+                "smusdx {area}, {b}, {c}",
+                "cmp {area}, #0",
+                "blt 9f",
+                "beq 2f",
+                "cmp {cull}, #0",
+                "beq 9f",
+                "2:",
+                "adds {p}, #6",
+                "cmp {p}, {end}",
+                "bne 1b",
+                "9:",
+                p = inout(reg) tris => at,
+                end = in(reg) end,
+                base = in(reg) cache,
+                cull = in(reg) cull as u32,
+                flags = const FLAGS_AT,
+                rare = const 1u32 << RARE_BIT,
+                area = out(reg) area,
+                a = out(reg) _,
+                b = out(reg) _,
+                c = out(reg) _,
+                t = out(reg) _,
+                u = out(reg) _,
+                options(readonly, nostack),
+            );
+        }
+        Some((at, area))
+    }
+    #[cfg(fixshade_thumb1)]
+    {
+        let (at, area): (*const [u16; 3], i32);
+        // SAFETY: as above. r6 and r7, which `asm!` may not name, are
+        // pushed and popped around their use; `end` and `cull` wait in r8
+        // and r9.
+        unsafe {
+            core::arch::asm!(
+                "push {{r6, r7}}",
+                "mov r8, r1",
+                "mov r9, r3",
+                "cmp r0, r8",
+                "beq 9f",
+                "1:",
+                "ldrh r4, [r0, #0]",
+                "ldrh r5, [r0, #2]",
+                "ldrh r6, [r0, #4]",
+                "lsls r4, r4, #4",
+                "lsls r5, r5, #4",
+                "lsls r6, r6, #4",
+                "adds r4, r4, r2",
+                "adds r5, r5, r2",
+                "adds r6, r6, r2",
+                "ldr r7, [r4, #{flags}]",
+                "ldr r1, [r5, #{flags}]",
+                "orrs r7, r1",
+                "ldr r1, [r6, #{flags}]",
+                "orrs r7, r1",
+                "lsls r7, r7, #{rare_up}",
+                "bmi 9f",
+                "ldr r7, [r4, #0]",
+                "ldr r1, [r5, #0]",
+                "ldr r3, [r6, #0]",
+                "asrs r4, r7, #16",
+                "asrs r5, r1, #16",
+                "asrs r6, r3, #16",
+                "subs r5, r5, r4",
+                "subs r6, r6, r4",
+                "sxth r7, r7",
+                "sxth r1, r1",
+                "sxth r3, r3",
+                "subs r1, r1, r7",
+                "subs r3, r3, r7",
+                "muls r1, r6, r1",
+                "muls r3, r5, r3",
+                "subs r1, r1, r3",
+                "beq 2f",
+                "bmi 8f",
+                "mov r7, r9",
+                "cmp r7, #0",
+                "beq 8f",
+                "2:",
+                "adds r0, #6",
+                "cmp r0, r8",
+                "bne 1b",
+                "b 9f",
+                "8:",
+                "mov r3, r1",
+                "9:",
+                "pop {{r6, r7}}",
+                inout("r0") tris => at,
+                inout("r1") end => _,
+                in("r2") cache,
+                inout("r3") cull as u32 => area,
+                flags = const FLAGS_AT,
+                rare_up = const 31 - RARE_BIT,
+                out("r4") _,
+                out("r5") _,
+                out("r8") _,
+                out("r9") _,
+                options(readonly),
+            );
+        }
+        Some((at, area))
+    }
+    #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
+    {
+        None
+    }
+}
+
 /// An optimisation barrier that emits no instruction, for the body of a
 /// loop that LLVM must not runtime-unroll.
 ///

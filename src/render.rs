@@ -42,6 +42,7 @@ use crate::light::LightSet;
 use crate::material::{Material, Specular};
 use crate::mesh::Mesh;
 use crate::options::check_bounds;
+use crate::platform;
 use crate::shade::{rect_of, Frame};
 use crate::span::{Memory, Out, TargetSink};
 use crate::vector::Mat4;
@@ -213,16 +214,50 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         if X::CACHED {
             frame.stage.project_all(cache);
         }
-        for tri in mesh.indices {
+        let tris = mesh.indices;
+        if X::CACHED && platform::SKIPS_CULLED {
+            let end = tris.as_ptr_range().end;
+            let mut at = tris.as_ptr();
+            // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
+            // triangle before `end`); the mesh is validated, so every index
+            // is below the cache's length, `n`.
+            while let Some((next, area)) =
+                unsafe { platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull) }
+            {
+                if next == end {
+                    break;
+                }
+                // SAFETY: `next` lies in `tris`, before its end.
+                let idx = unsafe { *next }.map(|i| i as usize);
+                // SAFETY: as below; `area` is the kept triangle's (a rare
+                // one finds its own).
+                unsafe {
+                    frame.triangle::<M, O, D>(cache, idx, idx, Some(area), out, depth, &mut stats)
+                }
+                .map_err(RenderError::Target)?;
+                // SAFETY: `next` is before `end`.
+                at = unsafe { next.add(1) };
+            }
+            return Ok(stats);
+        }
+        for tri in tris {
             let idx = tri.map(|i| i as usize);
             // SAFETY: the mesh is validated above, so every index is below
             // `n`, the cache's length; three corners take `[0, 1, 2]`.
             unsafe {
                 if X::CACHED {
-                    frame.triangle::<M, O, D>(cache, idx, idx, out, depth, &mut stats)
+                    frame.triangle::<M, O, D>(cache, idx, idx, None, out, depth, &mut stats)
                 } else {
                     let mut three = idx.map(|i| frame.stage.project(i));
-                    frame.triangle::<M, O, D>(&mut three, [0, 1, 2], idx, out, depth, &mut stats)
+                    frame.triangle::<M, O, D>(
+                        &mut three,
+                        [0, 1, 2],
+                        idx,
+                        None,
+                        out,
+                        depth,
+                        &mut stats,
+                    )
                 }
             }
             .map_err(RenderError::Target)?;

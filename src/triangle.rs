@@ -33,9 +33,12 @@ use crate::walk::EdgeFunctions;
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Culls, lights and draws one triangle: mesh vertices `vertex`,
-    /// projected into `cache[slot]`. (The corners are gathered only for a
-    /// triangle that passes the cheap tests: built for every triangle,
-    /// they were stored to the stack for every triangle.)
+    /// projected into `cache[slot]`; `known`, where the caller has found it
+    /// (`platform::skip_culled`), the doubled area of its kept window
+    /// positions, neither 0 nor culled, for a triangle the lean path takes.
+    /// (The corners are gathered only for a triangle that passes the cheap
+    /// tests: built for every triangle, they were stored to the stack for
+    /// every triangle.)
     ///
     /// # Safety
     /// Every `slot[k] < cache.len()`: the whole-frame draw hands a
@@ -52,6 +55,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         cache: &mut [CachedVertex],
         slot: [usize; 3],
         vertex: [usize; 3],
+        known: Option<i32>,
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -67,12 +71,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
         }
-        let xy = [v0.xy(), v1.xy(), v2.xy()];
-        let area = (xy[1][0] - xy[0][0]) * (xy[2][1] - xy[0][1])
-            - (xy[2][0] - xy[0][0]) * (xy[1][1] - xy[0][1]);
-        if area == 0 || (area > 0 && self.options.cull) {
-            return Ok(());
-        }
+        let area = match known {
+            Some(area) => area,
+            None => {
+                let xy = [v0.xy(), v1.xy(), v2.xy()];
+                let area = (xy[1][0] - xy[0][0]) * (xy[2][1] - xy[0][1])
+                    - (xy[2][0] - xy[0][0]) * (xy[1][1] - xy[0][1]);
+                if area == 0 || (area > 0 && self.options.cull) {
+                    return Ok(());
+                }
+                area
+            }
+        };
         // The depths only for a triangle culling keeps.
         let p = [v0.position(), v1.position(), v2.position()];
         let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);

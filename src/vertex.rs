@@ -469,6 +469,7 @@ const B_RARE: u64 = 1 << 54;
 /// assert_eq!(e, Err(RenderError::CacheTooSmall));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
 pub struct CachedVertex {
     x: i16,
     y: i16,
@@ -476,7 +477,13 @@ pub struct CachedVertex {
     c: [u32; 2],
 }
 
+// The layout the triangle loop's assembly reads (`platform::skip_culled`):
+// `x` and `y` the first word, the flags word with the rare path's flag.
 const _: () = assert!(core::mem::size_of::<CachedVertex>() == 16);
+const _: () = assert!(core::mem::offset_of!(CachedVertex, x) == 0);
+const _: () = assert!(core::mem::offset_of!(CachedVertex, y) == 2);
+const _: () = assert!(core::mem::offset_of!(CachedVertex, c) + 4 == platform::FLAGS_AT);
+const _: () = assert!(B_RARE == 1 << (32 + platform::RARE_BIT));
 
 impl CachedVertex {
     /// An empty entry (every draw call overwrites what it uses).
