@@ -755,10 +755,6 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     run.covered - run.failed
 }
 
-/// Whether [`skip_culled`] is assembly here (the whole-frame loop takes
-/// it), not `None`.
-pub(crate) const SKIPS_CULLED: bool = cfg!(any(fixshade_thumb1, fixshade_thumb2));
-
 /// Where a vertex cache entry keeps its flags word ([`skip_culled`]: the
 /// word at this byte offset, the rare path's flag at bit [`RARE_BIT`]).
 #[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]

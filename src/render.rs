@@ -215,9 +215,10 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             frame.stage.project_all(cache);
         }
         let tris = mesh.indices;
-        if X::CACHED && platform::SKIPS_CULLED {
+        if X::CACHED {
             let end = tris.as_ptr_range().end;
             let mut at = tris.as_ptr();
+            // Where the scan is assembly (`None` elsewhere: the loop below).
             // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
             // triangle before `end`); the mesh is validated, so every index
             // is below the cache's length, `n`.
@@ -225,7 +226,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
                 unsafe { platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull) }
             {
                 if next == end {
-                    break;
+                    return Ok(stats);
                 }
                 // SAFETY: `next` lies in `tris`, before its end.
                 let idx = unsafe { *next }.map(|i| i as usize);
@@ -238,7 +239,6 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
                 // SAFETY: `next` is before `end`.
                 at = unsafe { next.add(1) };
             }
-            return Ok(stats);
         }
         for tri in tris {
             let idx = tri.map(|i| i as usize);

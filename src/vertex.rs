@@ -82,6 +82,17 @@ const _: () = assert!(core::mem::offset_of!(Row, gh) == platform::ROW_SPLIT);
 const _: () = assert!(core::mem::offset_of!(Row, tl) == platform::ROW_SPLIT + 28);
 
 impl Row {
+    /// A row of zeros (what [`Rows::new`] writes its rows over).
+    const ZERO: Row = Row {
+        t: 0,
+        g: [0; 3],
+        gh: [0; 3],
+        th: 0,
+        gl: [0; 3],
+        tl: 0,
+        e: 0,
+    };
+
     /// The row of coefficients `c` and constant `k` at exponent `e`.
     fn at(c: [Wide; 3], k: Wide, e: i32) -> Row {
         let g = c.map(|w| w.at(e) as i32);
@@ -203,7 +214,7 @@ impl Rows {
         let fast = (0..4).all(|k| natural[k] <= forced[k]);
         let e = if fast { forced } else { natural };
         let mut out = Rows {
-            r: [Row::at([Wide::ZERO; 3], Wide::ZERO, 0); 4],
+            r: [Row::ZERO; 4],
             fast,
             contained: false,
         };
