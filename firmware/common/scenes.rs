@@ -1,7 +1,8 @@
 //! The scenes the firmware renders, shared by the device's code generator
 //! (`firmware/qemu/build.rs`) and the host's reference renderer
 //! (`firmware/host`): the standard scenes S1 to S4 at 320 × 240 in their own
-//! shading mode, and each again in the two other shading modes.
+//! shading mode, each again in the two other shading modes, and S1's
+//! sphere seen from inside ([`inside`]).
 
 use fixshade_host::scene_desc::{SceneDesc, Shading};
 use fixshade_host::standard_scenes;
@@ -51,7 +52,26 @@ pub fn variants() -> Vec<Variant> {
             }
         }
     }
+    out.push(Variant {
+        name: "inside_gouraud".into(),
+        mesh: "sphere48",
+        desc: inside(w, h),
+    });
     out
+}
+
+/// S1's sphere seen from inside with culling off and both sides lit: every
+/// triangle the camera sees faces away from it, and the near plane cuts
+/// those around the eye. The standard scenes cull their back faces and
+/// cross no plane, so this frame is what runs the triangle loop's kept
+/// back faces and its hand-over to the rare path (`src/clip.rs`) on the
+/// devices.
+pub fn inside(w: u32, h: u32) -> SceneDesc {
+    let mut d = standard_scenes::s1(w, h);
+    d.camera.eye = [0.2, 0.1, 0.95];
+    d.cull = false;
+    d.two_sided = true;
+    d
 }
 
 /// What the Cortex-M0 firmware (firmware/microbit, 256 KB of flash, 16 KB

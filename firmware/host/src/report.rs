@@ -311,7 +311,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
             md,
             "| {}{} | {mode} | {} | {} | {} | {} | {:.0} | {:.1} | {} | {:.0} | {:.1} | {:.2} ms | {:.2} ms | {} / {} B |",
             scene.to_uppercase(),
-            if std { "" } else { "′" },
+            if std || !scene.starts_with('s') { "" } else { "′" },
             a.triangles,
             a.drawn,
             a.pixels,
@@ -349,7 +349,9 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
     js.push_str("  ],\n");
     let _ = writeln!(
         md,
-        "\nS1–S4 in their own shading mode; ′: the same scene in another mode.\n"
+        "\nS1–S4 in their own shading mode; ′: the same scene in another mode. INSIDE: S1's \
+         sphere from inside, culling off, both sides lit, cut by the near plane: the triangle \
+         loop's kept back faces and the rare path (`src/clip.rs`).\n"
     );
 
     let find = |v: &[Frame], n: &str| v.iter().find(|f| f.name == n).map(|f| f.instructions);
