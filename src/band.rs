@@ -297,7 +297,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
         let n = mesh.positions.len();
         let h = check_band(bb, bands, depth, vertices, n)?;
         let mut stats = DrawStats {
-            triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
+            triangles: u32::try_from(mesh.indices().len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
         let Some(mut frame) = self.frame(mesh, size)? else {
@@ -308,12 +308,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Prepared<'_, S, V, L> {
         if X::CACHED {
             frame.stage.project_all(cache);
         }
-        let runs = Runs::new(mesh.indices.len());
+        let runs = Runs::new(mesh.indices().len());
         let mut recent = RecentVertices::new();
         let mut bounds = [(i32::MAX, i32::MIN); CHUNKS];
         // Bit j: triangle j of the run may draw (j ≥ 32: always visited).
         let mut visible = [0u32; CHUNKS];
-        for (t, tri) in mesh.indices.iter().enumerate() {
+        for (t, tri) in mesh.indices().iter().enumerate() {
             let idx = tri.map(|i| i as usize);
             let v = if X::CACHED {
                 idx.map(|i| cache.get(i).copied().unwrap_or_default())
@@ -378,7 +378,7 @@ impl Job<'_, '_> {
     {
         let bb = self.bb;
         let (w, height) = (bb.size.width, bb.size.height);
-        let (indices, per) = (self.mesh.indices, self.runs.per);
+        let (indices, per) = (self.mesh.indices(), self.runs.per);
         let whole = frame.rect;
         let oy = frame.origin.1;
         // Bands to skip before this worker's next one (none ever for a

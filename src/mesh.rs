@@ -444,8 +444,12 @@ pub struct Mesh<'a> {
     pub bounds: Bounds,
     /// Normals, one per position, or `None` (see [`vertex_normals`]).
     pub normals: Option<&'a [PackedNormal]>,
-    /// Triangles as vertex indices.
-    pub indices: &'a [[u16; 3]],
+    /// Triangles as vertex indices ([`Mesh::indices`]).
+    indices: &'a [[u16; 3]],
+    /// The largest index (0 without triangles), found once where the mesh
+    /// is made ([`Mesh::new`], at compile time for a `static`), so that a
+    /// draw checks every index with one compare ([`Mesh::validate`]).
+    top: u16,
 }
 
 /// The first bytes of a mesh's byte layout ([`Mesh::from_bytes`]).
@@ -496,7 +500,7 @@ pub struct Aligned<B: ?Sized>(pub B);
 /// ```
 /// # fn main() -> Result<(), fixshade::mesh::MeshError> {
 /// let mesh = fixshade::include_mesh!("../tests/data/tetrahedron.fxm")?;
-/// assert_eq!((mesh.positions.len(), mesh.indices.len()), (4, 4));
+/// assert_eq!((mesh.positions.len(), mesh.indices().len()), (4, 4));
 /// # Ok(())
 /// # }
 /// ```
@@ -518,15 +522,41 @@ impl<'a> Mesh<'a> {
     /// let indices = [[0, 1, 2], [0, 2, 3]];
     /// let mesh = Mesh::new(&positions, Bounds::UNIT, &indices);
     /// assert!(mesh.normals.is_none());
-    /// assert_eq!((mesh.positions.len(), mesh.indices.len()), (4, 2));
+    /// assert_eq!((mesh.positions.len(), mesh.indices().len()), (4, 2));
     /// ```
+    ///
+    /// It finds the largest index once, a `static` mesh's at compile time,
+    /// so that a draw checks the indices with one compare
+    /// ([`Mesh::validate`]) instead of a pass over the triangles.
     pub const fn new(positions: &'a [[i16; 3]], bounds: Bounds, indices: &'a [[u16; 3]]) -> Self {
+        let mut top = 0u16;
+        let mut t = 0;
+        while t < indices.len() {
+            let [a, b, c] = indices[t];
+            // (`Ord::max` is not `const`.)
+            let ab = if a > b { a } else { b };
+            let abc = if ab > c { ab } else { c };
+            top = if abc > top { abc } else { top };
+            t += 1;
+        }
         Mesh {
             positions,
             bounds,
             normals: None,
             indices,
+            top,
         }
+    }
+
+    /// The triangles, as vertex indices.
+    ///
+    /// ```
+    /// use fixshade::mesh::{Bounds, Mesh};
+    /// let mesh = Mesh::new(&[[0i16; 3]; 3], Bounds::UNIT, &[[0, 1, 2]]);
+    /// assert_eq!(mesh.indices(), &[[0, 1, 2]]);
+    /// ```
+    pub const fn indices(&self) -> &'a [[u16; 3]] {
+        self.indices
     }
 
     /// Adds normals.
@@ -546,7 +576,9 @@ impl<'a> Mesh<'a> {
         self
     }
 
-    /// Checks every index and the normals' count.
+    /// Checks every index and the normals' count: the indices by their
+    /// largest, which [`Mesh::new`] found (one compare a draw); the
+    /// triangles one by one only to name the first that fails.
     ///
     /// ```
     /// use fixshade::mesh::{Bounds, Mesh, MeshError};
@@ -562,24 +594,7 @@ impl<'a> Mesh<'a> {
             }
         }
         let count = self.positions.len();
-        // Every `u16` index is below a count past `u16::MAX` (and the
-        // offset below would not fit).
-        if count > usize::from(u16::MAX) {
-            return Ok(());
-        }
-        // All indices at once, in one pass; the search only for a mesh
-        // that fails. Index `i < count` exactly
-        // where `i + 2¹⁶ − count < 2¹⁶` (both terms below 2¹⁶, `count ≥ 1`
-        // here or no index passes), so the sums' `|` has no bit from 2¹⁶
-        // up exactly where every index is below `count`: an add and an or
-        // per index, where the largest took a compare and a select.
-        let k = 0x1_0000 - count as u32;
-        let all = self
-            .indices
-            .as_flattened()
-            .iter()
-            .fold(0, |m, &i| m | (i as u32 + k));
-        if all < 0x1_0000 {
+        if self.indices.is_empty() || usize::from(self.top) < count {
             return Ok(());
         }
         for (t, tri) in self.indices.iter().enumerate() {
@@ -787,7 +802,7 @@ fn quantised_face_normal(scale: [u32; 3], a: [i16; 3], b: [i16; 3], c: [i16; 3])
 /// let (mut sums, mut out) = ([[0i32; 3]; 3], [PackedNormal::ZERO; 3]);
 /// vertex_normals(&mesh, &mut sums, &mut out).unwrap();
 /// assert_eq!(out, [PackedNormal::Z; 3]);
-/// let normals = Mesh { normals: Some(&out), ..mesh }; // ready to draw
+/// let normals = mesh.with_normals(&out); // ready to draw
 /// # assert!(normals.validate().is_ok());
 /// ```
 pub fn vertex_normals(
@@ -826,6 +841,35 @@ pub fn vertex_normals(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The largest index is found where the mesh is made, at compile time
+    /// for a `static`, wherever it lies in a triangle; the check against
+    /// the count is made at validation, so a mesh whose positions are
+    /// shortened afterwards still fails, naming its first bad triangle.
+    #[test]
+    fn largest_index_found_when_made() {
+        static P: [[i16; 3]; 4] = [[0; 3]; 4];
+        static T: [[u16; 3]; 3] = [[0, 1, 2], [3, 0, 1], [1, 2, 0]];
+        static M: Mesh = Mesh::new(&P, Bounds::UNIT, &T);
+        assert_eq!(M.top, 3);
+        assert_eq!(M.validate(), Ok(()));
+        let short = Mesh {
+            positions: &P[..3],
+            ..M
+        };
+        let err = MeshError::IndexOutOfRange {
+            triangle: 1,
+            index: 3,
+        };
+        assert_eq!(short.validate(), Err(err));
+        assert_eq!(Mesh::new(&P, Bounds::UNIT, &[]).top, 0);
+        for k in 0..3 {
+            let mut t = [[1u16; 3]; 3];
+            t[1][k] = 9;
+            t[2][k] = 5;
+            assert_eq!(Mesh::new(&P, Bounds::UNIT, &t).top, 9, "{k}");
+        }
+    }
 
     /// Every index is checked against the count at the ends of both
     /// ranges: the last vertex passes, one past it fails with the first

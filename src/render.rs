@@ -204,7 +204,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             return Err(RenderError::DepthTooSmall);
         }
         let mut stats = DrawStats {
-            triangles: u32::try_from(mesh.indices.len()).unwrap_or(u32::MAX),
+            triangles: u32::try_from(mesh.indices().len()).unwrap_or(u32::MAX),
             ..DrawStats::default()
         };
         let Some(frame) = self.frame(mesh, size)? else {
@@ -214,7 +214,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         if X::CACHED {
             frame.stage.project_all(cache);
         }
-        let tris = mesh.indices;
+        let tris = mesh.indices();
         if X::CACHED {
             let end = tris.as_ptr_range().end;
             let mut at = tris.as_ptr();

@@ -324,7 +324,7 @@ impl MeshData {
             positions: m.positions.to_vec(),
             bounds: m.bounds,
             normals: m.normals.map(<[PackedNormal]>::to_vec),
-            indices: m.indices.to_vec(),
+            indices: m.indices().to_vec(),
         }
     }
 
@@ -334,7 +334,7 @@ impl MeshData {
     /// use fixshade_host::generate::plane;
     /// use fixshade_host::mesh_convert::MeshData;
     /// let data = MeshData::from_desc(&plane(2.0, 4)).unwrap();
-    /// assert_eq!(data.mesh().indices.len(), 32);
+    /// assert_eq!(data.mesh().indices().len(), 32);
     /// ```
     pub fn mesh(&self) -> Mesh<'_> {
         let m = Mesh::new(&self.positions, self.bounds, &self.indices);

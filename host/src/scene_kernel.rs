@@ -221,7 +221,7 @@ impl KernelScene {
     /// s.mesh.normals = None; // derived in fixed point
     /// let k = KernelScene::new(&s).unwrap();
     /// let mesh = k.mesh();
-    /// assert_eq!(mesh.indices.len(), s.mesh.indices.len());
+    /// assert_eq!(mesh.indices().len(), s.mesh.indices.len());
     /// assert_eq!(mesh.normals.map(|n| n.len()), Some(s.mesh.positions.len()));
     /// ```
     pub fn new(d: &SceneDesc) -> Result<KernelScene, KernelSceneError> {
@@ -275,7 +275,7 @@ impl KernelScene {
     /// let p = mesh.bounds.position_f64(mesh.positions[7]);
     /// assert_eq!(p, k.reference_scene().mesh.positions[7]);
     /// assert!((0..3).all(|i| (p[i] - s.mesh.positions[7][i]).abs() < 2.0 / 65535.0));
-    /// assert_eq!(mesh.indices[7], s.mesh.indices[7]);
+    /// assert_eq!(mesh.indices()[7], s.mesh.indices[7]);
     /// ```
     pub fn mesh(&self) -> Mesh<'_> {
         self.mesh.mesh()

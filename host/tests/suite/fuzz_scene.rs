@@ -612,12 +612,8 @@ pub struct Report {
 /// target size, depth, then, for a target that is not empty, camera and
 /// the scene's scale; an empty target draws nothing).
 pub fn expected_error(s: &Scene) -> Option<RenderError<Infallible>> {
-    let mesh = Mesh {
-        positions: &s.positions,
-        bounds: s.bounds,
-        normals: s.normals.as_deref(),
-        indices: &s.indices,
-    };
+    let mut mesh = Mesh::new(&s.positions, s.bounds, &s.indices);
+    mesh.normals = s.normals.as_deref();
     if let Some(ns) = &s.normals {
         if ns.len() != s.positions.len() {
             return Some(RenderError::Mesh(MeshError::NormalCount));
@@ -687,12 +683,8 @@ fn draw_both<S: Specular, V: Viewer, M: ShadingMode>(
         .with_viewer(viewer)
         .with_shading(shading)
         .with_options(s.options);
-    let mesh = Mesh {
-        positions: &s.positions,
-        bounds: s.bounds,
-        normals: s.normals.as_deref(),
-        indices: &s.indices,
-    };
+    let mut mesh = Mesh::new(&s.positions, s.bounds, &s.indices);
+    mesh.normals = s.normals.as_deref();
     let n = s.positions.len();
     let px = s.width as usize * s.height as usize;
     let mut cache = vec![CachedVertex::default(); n.saturating_sub(s.cache_short)];
