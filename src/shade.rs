@@ -303,6 +303,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let mut table = [MaybeUninit::uninit(); CHUNK];
         let (planes, walk) = match setup::set_up(v, area, rect, &mut slot, &mut table) {
             SetUp::Empty => return Ok(()),
+            // Counted as set up, as a walk of empty rows would be.
+            SetUp::Uncovered => {
+                stats.drawn = stats.drawn.saturating_add(1);
+                return Ok(());
+            }
             // Most triangles: every row at once, one call of the output.
             SetUp::Rows { planes, rows, y } => {
                 stats.drawn = stats.drawn.saturating_add(1);
