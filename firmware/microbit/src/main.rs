@@ -93,6 +93,10 @@ impl DrawTarget for Stream {
         Err(StreamError::Order)
     }
 
+    // Out of line: the copy's registers then do not depend on the band
+    // renderer's, into which it was inlined (a change in the kernel moved
+    // S2 by four instructions a pixel here, with the kernel's code unchanged).
+    #[inline(never)]
     fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
         &mut self,
         area: &Rectangle,
