@@ -220,10 +220,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// The three vertices' eye positions (raw) and normals (`Q.22`, below
     /// 2²³: 8 more fractional bits than a unit vector's), for the back if
     /// `back`.
-    fn phong_corners(&self, c: &Corners, back: bool) -> ([[i64; 3]; 3], [[i32; 3]; 3]) {
+    fn phong_corners(&self, c: &mut Corners, back: bool) -> ([[i64; 3]; 3], [[i32; 3]; 3]) {
         let e = c.vertex.map(|i| self.stage.eye(i).to_bits().map(i64::from));
-        let n = c.vertex.map(|i| {
-            let n = self.stage.eye_normal(i);
+        let n = [0, 1, 2].map(|k| {
+            let n = match c.cache.get_mut(c.slot[k]) {
+                Some(v) => self.stage.normal(v, c.vertex[k]),
+                None => Unit3::ZERO,
+            };
             let n = if back { n.neg() } else { n };
             n.to_bits().map(|v| (v as i32) << 8)
         });

@@ -443,6 +443,9 @@ const COLOUR_MASK: u64 = (1 << 51) - 1;
 const B_FRONT: u64 = 1 << 52;
 /// The colour is the back face's (negated normal).
 const B_BACK: u64 = 1 << 53;
+/// The colour word holds the eye normal instead (Phong shading, which
+/// keeps no colour): three `i16` in bits 0–47.
+const B_NORMAL: u64 = 1 << 55;
 /// The vertex goes to the rare path: behind the near plane, outside the
 /// guard band, past `z_w = 2` or too close to the eye for the 32-bit
 /// form (its window position is not kept).
@@ -740,6 +743,24 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
         let m = &self.normal_m;
         let row = |r: usize| m[r][0] as i32 * b[0] + m[r][1] as i32 * b[1] + m[r][2] as i32 * b[2];
         normalize([row(0), row(1), row(2)]).unwrap_or(Unit3::ZERO)
+    }
+
+    /// The eye normal of mesh vertex `i` (its entry `v`): the one its
+    /// entry keeps, or made now ([`Stage::eye_normal`]) and kept, in the
+    /// colour word that Phong shading does not use. (The corners of every
+    /// triangle made it again: three a triangle drawn, where each vertex is
+    /// a corner of about six.)
+    #[inline(always)]
+    pub(crate) fn normal(&self, v: &mut CachedVertex, i: usize) -> Unit3 {
+        let bits = v.bits();
+        let part = |k: u32| (bits >> k) as u16 as i16;
+        if bits & B_NORMAL != 0 {
+            return Unit3::new_clamped(part(0), part(16), part(32));
+        }
+        let n = self.eye_normal(i);
+        let b = n.to_bits().map(|c| c as u16 as u64);
+        v.set_bits((bits & !COLOUR_MASK) | b[0] | b[1] << 16 | b[2] << 32 | B_NORMAL);
+        n
     }
 
     /// The lit colour of vertex `i` (its entry `v`), for its back (negated
