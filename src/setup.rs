@@ -503,6 +503,73 @@ mod tests {
         got
     }
 
+    /// `set_up` itself, as a draw calls it: small triangles (a few
+    /// samples, where it may test each, and the thin ones between samples
+    /// that cover none) and larger ones. A triangle it calls `Uncovered`
+    /// covers no sample by the edge functions; one it hands over as rows
+    /// has exactly their spans and the planes [`set_up_walked`] makes; one
+    /// it walks has their spans too.
+    #[test]
+    fn set_up_skips_only_uncovered_triangles() {
+        let mut rnd = xorshift(0x5e70_0bad_c0ff_ee11);
+        let (mut uncovered, mut rows) = (0, 0);
+        for i in 0..40_000 {
+            let reach = [24, 48, 90, 16 * 30][i % 4];
+            let c = |x: u64| (x % (2 * reach as u64 + 1)) as i32 - reach;
+            let (ox, oy) = (16 * 20 + c(rnd()), 16 * 12 + c(rnd()));
+            let v = [0, 1, 2].map(|k| Vtx {
+                x: ox + c(rnd()),
+                y: oy + c(rnd()),
+                a: [k * 1000],
+            });
+            let a = area(&v);
+            if a == 0 {
+                continue;
+            }
+            let want = oracle(&v, 40, 24);
+            let rect = Rect {
+                c0: 0,
+                c1: 39,
+                r0: 0,
+                r1: 23,
+            };
+            let mut table = [MaybeUninit::uninit(); CHUNK];
+            let mut slot = MaybeUninit::uninit();
+            match set_up(&v, a, &rect, &mut slot, &mut table) {
+                SetUp::Empty => assert!(want.is_empty(), "{v:?}"),
+                SetUp::Uncovered => {
+                    assert!(want.is_empty(), "{v:?}");
+                    uncovered += 1;
+                }
+                SetUp::Rows { planes, rows: r, y } => {
+                    let got: Vec<_> = r
+                        .iter()
+                        .zip(y..)
+                        .filter(|(r, _)| r.n > 0)
+                        .map(|(r, y)| (y, r.x0, r.x0 + r.n - 1))
+                        .collect();
+                    assert_eq!(got, want, "{v:?}");
+                    let mut other = MaybeUninit::uninit();
+                    let walked = set_up_walked(&v, a, &rect, &mut other);
+                    let p = &walked.expect("rows, so samples").planes;
+                    assert_eq!((planes.at, planes.gx, planes.gy), (p.at, p.gx, p.gy));
+                    rows += 1;
+                }
+                SetUp::Walk(t) => {
+                    let mut got = Vec::new();
+                    let (planes, walk) = (&t.planes, t.walk);
+                    walk.run(planes, |s| {
+                        got.push((s.y, s.x0, s.x0 + s.n as i32 - 1));
+                        Ok::<(), ()>(())
+                    })
+                    .unwrap();
+                    assert_eq!(got, want, "{v:?}");
+                }
+            }
+        }
+        assert!(uncovered > 200 && rows > 5_000, "{uncovered} {rows}");
+    }
+
     /// The spans the edge functions give, sample by sample, and attributes
     /// within the stated bound of the exact plane, for random triangles
     /// reaching across the band, attributes to the bound.
