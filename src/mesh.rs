@@ -449,6 +449,9 @@ pub struct Mesh<'a> {
     /// The largest index (0 without triangles), found once where the mesh
     /// is made ([`Mesh::new`], at compile time for a `static`), so that a
     /// draw checks every index with one compare ([`Mesh::validate`]).
+    /// Invariant: no index is larger. Only `Mesh::new` sets it and
+    /// `indices`, both private: the draws' unchecked reads of the vertex
+    /// cache rely on it through `validate`.
     top: u16,
 }
 
