@@ -456,8 +456,9 @@ const B_RARE: u64 = 1 << 54;
 ///
 /// The window position is kept as `i16` sixteenths of a pixel from the
 /// viewport's centre, the depth attribute as `i32`, and one lit colour
-/// (three 17-bit channels) with the flags in 64 bits. A vertex lit for
-/// both faces (a silhouette vertex with two-sided lighting) keeps the
+/// (three 17-bit channels) with the flags in 64 bits; Phong shading, which
+/// lights pixels, keeps the vertex's eye normal there instead. A vertex lit
+/// for both faces (a silhouette vertex with two-sided lighting) keeps the
 /// first face's colour; the other one is lit again when asked for.
 ///
 /// ```
