@@ -748,9 +748,8 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
 
     /// The eye normal of mesh vertex `i` (its entry `v`): the one its
     /// entry keeps, or made now ([`Stage::eye_normal`]) and kept, in the
-    /// colour word that Phong shading does not use. (The corners of every
-    /// triangle made it again: three a triangle drawn, where each vertex is
-    /// a corner of about six.)
+    /// colour word that Phong shading does not use. Kept because a vertex
+    /// is a corner of about six triangles drawn, and each corner reads it.
     #[inline(always)]
     pub(crate) fn normal(&self, v: &mut CachedVertex, i: usize) -> Unit3 {
         let bits = v.bits();

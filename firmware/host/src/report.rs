@@ -311,6 +311,7 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
             md,
             "| {}{} | {mode} | {} | {} | {} | {} | {:.0} | {:.1} | {} | {:.0} | {:.1} | {:.2} ms | {:.2} ms | {} / {} B |",
             scene.to_uppercase(),
+            // ′: a standard scene in another mode (INSIDE is none of them).
             if std || !scene.starts_with('s') { "" } else { "′" },
             a.triangles,
             a.drawn,
