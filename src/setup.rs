@@ -81,8 +81,6 @@ pub(crate) struct Triangle<const N: usize> {
 
 /// What [`set_up`] made of a triangle.
 pub(crate) enum SetUp<'s, 'r, const N: usize> {
-    /// No row of the rectangle has a sample in the triangle's rows.
-    Empty,
     /// Rows with samples, none of them covered (a thin triangle between
     /// them): nothing to draw, no planes made.
     Uncovered,
@@ -101,10 +99,11 @@ pub(crate) enum SetUp<'s, 'r, const N: usize> {
 /// [`set_up`] tests one by one ([`platform::TEST_SAMPLES`]).
 pub(crate) const SMALL: i32 = 4;
 
-/// Sets up triangle `v` of doubled area `area` (not 0) on `rect` into
-/// `slot`: its walk or, for a triangle of at most [`SMALL`] rows and
-/// columns of samples where the core divides in software, every row's
-/// span into `table`, each sample tested against the edge functions
+/// Sets up triangle `v` of doubled area `area` (not 0), whose samples on
+/// `rect` are `s` ([`samples`]: found by the caller, which tests them
+/// first), into `slot`: its walk or, for a triangle of at most [`SMALL`]
+/// rows and columns of samples where the core divides in software, every
+/// row's span into `table`, each sample tested against the edge functions
 /// ([`EdgeFunctions`]) instead of walking the edges (three quotients and
 /// their steps); both give the same spans. Then its planes, unless the
 /// rows at hand cover no sample. Out of line, into the caller's memory:
@@ -114,13 +113,11 @@ pub(crate) const SMALL: i32 = 4;
 pub(crate) fn set_up<'s, 'r, const N: usize>(
     v: &[Vtx<N>; 3],
     area: i32,
+    s: &Samples,
     rect: &Rect,
     slot: &'s mut MaybeUninit<Triangle<N>>,
     table: &'r mut [MaybeUninit<Row>; CHUNK],
 ) -> SetUp<'s, 'r, N> {
-    let Some(s) = samples(v, rect) else {
-        return SetUp::Empty;
-    };
     let out = slot.as_mut_ptr();
     // The spans first: a triangle that covers no sample (a tenth of a
     // fine mesh's) is spared its planes.
@@ -130,7 +127,7 @@ pub(crate) fn set_up<'s, 'r, const N: usize>(
             let e = EdgeFunctions::new(v.map(|p| (p.x, p.y)), area, at);
             Ok(e.rows(s.rows, s.cols, table))
         } else {
-            let w = walk(v, &s, rect);
+            let w = walk(v, s, rect);
             // Most triangles: every row at once.
             w.all(table).ok_or(w)
         };
@@ -172,25 +169,37 @@ pub(crate) struct Samples {
     pub(crate) clamp: bool,
 }
 
-/// The samples of triangle `v` within `rect`, or `None` where no row of
-/// `rect` has a sample in `[top, bottom)`: row `r` samples at `16r + 8`,
-/// within `[a, b)` for `r ∈ [⌈(a − 8)/16⌉, ⌈(b − 8)/16⌉ − 1]`; column `c`
-/// within `[a, b]` for `c ∈ [⌈(a − 8)/16⌉, ⌊(b − 8)/16⌋]`.
+/// The samples of triangle `v` within `rect` ([`Samples::of_box`]).
 #[inline(always)]
 pub(crate) fn samples<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<Samples> {
     let (x, y) = (v.map(|p| p.x), v.map(|p| p.y));
-    let r0 = ((y[0].min(y[1]).min(y[2]) + 7) >> 4).max(rect.r0);
-    let r1 = (((y[0].max(y[1]).max(y[2]) + 7) >> 4) - 1).min(rect.r1);
-    if r0 > r1 {
-        return None;
+    let lo = (x[0].min(x[1]).min(x[2]), y[0].min(y[1]).min(y[2]));
+    let hi = (x[0].max(x[1]).max(x[2]), y[0].max(y[1]).max(y[2]));
+    Samples::of_box(lo, hi, rect)
+}
+
+impl Samples {
+    /// The samples within `rect` of a triangle whose window positions'
+    /// box is `lo ..= hi`, or `None` where no row of `rect` has a sample
+    /// in `[top, bottom)`: row `r` samples at `16r + 8`, within `[a, b)`
+    /// for `r ∈ [⌈(a − 8)/16⌉, ⌈(b − 8)/16⌉ − 1]`; column `c` within `[a,
+    /// b]` for `c ∈ [⌈(a − 8)/16⌉, ⌊(b − 8)/16⌋]`.
+    #[inline(always)]
+    pub(crate) fn of_box(lo: (i32, i32), hi: (i32, i32), rect: &Rect) -> Option<Samples> {
+        let r0 = ((lo.1 + 7) >> 4).max(rect.r0);
+        // ⌈(b − 8)/16⌉ − 1 = ⌊(b − 9)/16⌋.
+        let r1 = ((hi.1 - 9) >> 4).min(rect.r1);
+        if r0 > r1 {
+            return None;
+        }
+        let c0 = (lo.0 + 7) >> 4;
+        let c1 = (hi.0 - 8) >> 4;
+        Some(Samples {
+            rows: (r0, r1),
+            cols: (c0.max(rect.c0), c1.min(rect.c1)),
+            clamp: c0 < rect.c0 || c1 > rect.c1,
+        })
     }
-    let c0 = (x[0].min(x[1]).min(x[2]) + 7) >> 4;
-    let c1 = (x[0].max(x[1]).max(x[2]) - 8) >> 4;
-    Some(Samples {
-        rows: (r0, r1),
-        cols: (c0.max(rect.c0), c1.min(rect.c1)),
-        clamp: c0 < rect.c0 || c1 > rect.c1,
-    })
 }
 
 /// The walk of triangle `v`, whose samples are `s`, on `rect`.
@@ -535,8 +544,11 @@ mod tests {
             };
             let mut table = [MaybeUninit::uninit(); CHUNK];
             let mut slot = MaybeUninit::uninit();
-            match set_up(&v, a, &rect, &mut slot, &mut table) {
-                SetUp::Empty => assert!(want.is_empty(), "{v:?}"),
+            let Some(s) = samples(&v, &rect) else {
+                assert!(want.is_empty(), "{v:?}");
+                continue;
+            };
+            match set_up(&v, a, &s, &rect, &mut slot, &mut table) {
                 SetUp::Uncovered => {
                     assert!(want.is_empty(), "{v:?}");
                     uncovered += 1;

@@ -17,7 +17,7 @@ use crate::material::Specular;
 use crate::mesh::face_normal;
 use crate::num::division::floor_div;
 use crate::options::{DrawStats, RenderOptions, ShadingKind, ShadingMode};
-use crate::setup::{self, Rect, SetUp, Vtx};
+use crate::setup::{self, Rect, Samples, SetUp, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
@@ -61,13 +61,16 @@ pub(crate) fn rect_of(size: (u32, u32)) -> ((i32, i32), Rect) {
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Lights and draws triangle `c` as it is (the lean path): its
-    /// vertices' window positions and depths `p`, of doubled area `area`.
+    /// vertices' window positions and depths `p`, of doubled area `area`
+    /// (not 0), its samples on the frame's rectangle `s`.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn whole<M: ShadingMode, O: Out, D: DepthTest>(
         &self,
         c: &mut Corners,
         p: &[[i32; 3]; 3],
         area: i32,
+        s: &Samples,
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -87,18 +90,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             ShadingKind::Gouraud => {
                 let a = self.gouraud(c, back, stats);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
-                self.gouraud_draw(&v, area, rect, out, depth, stats)
+                self.gouraud_draw(&v, area, s, rect, out, depth, stats)
             }
             ShadingKind::Flat => {
                 let sh = self.flat(c, back, stats);
                 let v = [vtx(&p[0], [0]), vtx(&p[1], [0]), vtx(&p[2], [0])];
-                self.draw(&v, area, rect, out, depth, stats, &sh)
+                self.draw(&v, area, s, rect, out, depth, stats, &sh)
             }
             ShadingKind::Phong => {
                 let (e, n) = self.phong_corners(c, back);
                 let (a, sh) = self.phong(e, n);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
-                self.draw(&v, area, rect, out, depth, stats, &sh)
+                self.draw(&v, area, s, rect, out, depth, stats, &sh)
             }
         }
     }
@@ -134,7 +137,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         a[0] = z;
                         Vtx { x, y, a }
                     });
-                    self.gouraud_draw(&v, setup::area(&v), rect, out, depth, stats)?;
+                    if let Some((a, s)) = cut(&v, rect) {
+                        self.gouraud_draw(&v, a, &s, rect, out, depth, stats)?;
+                    }
                 }
                 Ok(())
             }
@@ -145,7 +150,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         let (x, y, z) = corner(k);
                         Vtx { x, y, a: [z] }
                     });
-                    self.draw(&v, setup::area(&v), rect, out, depth, stats, &sh)?;
+                    if let Some((a, s)) = cut(&v, rect) {
+                        self.draw(&v, a, &s, rect, out, depth, stats, &sh)?;
+                    }
                 }
                 Ok(())
             }
@@ -165,7 +172,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         a[0] = z;
                         Vtx { x, y, a }
                     });
-                    self.draw(&v, setup::area(&v), rect, out, depth, stats, &sh)?;
+                    if let Some((a, s)) = cut(&v, rect) {
+                        self.draw(&v, a, &s, rect, out, depth, stats, &sh)?;
+                    }
                 }
                 Ok(())
             }
@@ -188,10 +197,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
     /// Sets up and draws Gouraud triangle `v`, dithered or not.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn gouraud_draw<O: Out, D: DepthTest>(
         &self,
         v: &[Vtx<4>; 3],
         area: i32,
+        s: &Samples,
         rect: &Rect,
         out: &mut O,
         depth: &mut D,
@@ -200,7 +211,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let sh = span::Gouraud {
             dither: self.options.dither,
         };
-        self.draw(v, area, rect, out, depth, stats, &sh)
+        self.draw(v, area, s, rect, out, depth, stats, &sh)
     }
 
     /// The flat shader: the equation at the centroid with the face normal.
@@ -282,9 +293,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
     }
 
-    /// Sets up and walks one triangle `v` of doubled area `area` on
-    /// `rect`, sending its rows' spans through `sh` (the depth left out
-    /// without a depth test). Out of
+    /// Sets up and walks one triangle `v` of doubled area `area` (not 0)
+    /// on `rect`, where its samples are `s`, sending its rows' spans
+    /// through `sh` (the depth left out without a depth test). Out of
     /// line: its row and pixel loops get the registers, not the triangle
     /// loop's state.
     #[inline(never)]
@@ -293,19 +304,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         &self,
         v: &[Vtx<N>; 3],
         area: i32,
+        s: &Samples,
         rect: &Rect,
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
         sh: &Sh,
     ) -> Result<(), O::Error> {
-        if area == 0 {
-            return Ok(());
-        }
         let mut slot = MaybeUninit::uninit();
         let mut table = [MaybeUninit::uninit(); CHUNK];
-        let (planes, walk) = match setup::set_up(v, area, rect, &mut slot, &mut table) {
-            SetUp::Empty => return Ok(()),
+        let (planes, walk) = match setup::set_up(v, area, s, rect, &mut slot, &mut table) {
             // Counted as set up, as a walk of empty rows would be.
             SetUp::Uncovered => {
                 stats.drawn = stats.drawn.saturating_add(1);
@@ -339,6 +347,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         stats.pixels = stats.pixels.saturating_add(pixels);
         res
     }
+}
+
+/// A piece's doubled area and its samples on `rect`, if it has an area
+/// and a row of samples there.
+fn cut<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<(i32, Samples)> {
+    let a = setup::area(v);
+    if a == 0 {
+        return None;
+    }
+    Some((a, setup::samples(v, rect)?))
 }
 
 /// Attributes mixed from the three vertices' `a` by `Q.30` weights `w`

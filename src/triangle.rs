@@ -26,6 +26,7 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::options::{DrawStats, ShadingMode};
+use crate::setup::Samples;
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
 use crate::vertex::CachedVertex;
@@ -88,9 +89,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
         let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
         let (lo, hi) = ((lo(0), lo(1)), (hi(0), hi(1)));
-        let Some((cols, rows)) = self.meets(lo, hi) else {
+        // The samples the box holds, if any: the cheap test that spares
+        // off-screen and tiny triangles their lighting and set-up; the
+        // set-up takes them as found here.
+        let Some(s) = Samples::of_box(lo, hi, &self.rect).filter(|s| s.cols.0 <= s.cols.1) else {
             return Ok(());
         };
+        let (cols, rows) = (s.cols, s.rows);
         // A box of at most 2 × 2 pixel centres: the samples tested one by
         // one, and a triangle that covers none of them (most of a fine
         // mesh's far from the centre of the view) is neither lit nor set up.
@@ -105,20 +110,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             slot,
             vertex,
         };
-        self.whole::<M, O, D>(c, &p, area, out, depth, stats)
-    }
-
-    /// The columns and rows of the pixel centres of the pixels drawn that
-    /// the box `lo ..= hi` of the window positions holds, if any: the
-    /// cheap test that spares off-screen and tiny triangles their lighting
-    /// and set-up. Sample `16x + 8` lies in `[min, max]` for `x ∈
-    /// [⌈(min − 8)/16⌉, ⌊(max − 8)/16⌋]`.
-    #[inline(always)]
-    fn meets(&self, lo: (i32, i32), hi: (i32, i32)) -> Option<((i32, i32), (i32, i32))> {
-        let r = &self.rect;
-        let (x0, x1) = (((lo.0 + 7) >> 4).max(r.c0), ((hi.0 - 8) >> 4).min(r.c1));
-        let (y0, y1) = (((lo.1 + 7) >> 4).max(r.r0), ((hi.1 - 8) >> 4).min(r.r1));
-        (x0 <= x1 && y0 <= y1).then_some(((x0, x1), (y0, y1)))
+        self.whole::<M, O, D>(c, &p, area, &s, out, depth, stats)
     }
 
     /// Whether the unsnapped triangle faces otherwise than its snapped
