@@ -31,7 +31,6 @@ use crate::material::Specular;
 use crate::num::division::floor_div;
 use crate::num::Wide;
 use crate::options::{DrawStats, ShadingMode};
-use crate::platform;
 use crate::setup::{Rect, ATTR};
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
@@ -62,7 +61,7 @@ type Plane = [Wide; 4];
 /// The signed distance of rows `h` (exponents `e`) from `p`.
 fn distance(p: &Plane, h: &[i64; 4], e: &[i32; 4]) -> Wide {
     (0..4).fold(Wide::ZERO, |acc, k| {
-        acc.add(p[k].times(Wide::new(h[k], e[k])))
+        acc.add(&p[k].times(&Wide::new(h[k], e[k])))
     })
 }
 
@@ -88,6 +87,17 @@ fn lerp30(a: i64, b: i64, t: i64) -> i64 {
     let d = b - a;
     let (dh, dl) = (d >> 31, d & ((1 << 31) - 1));
     a + ((dh * t) << 1) + ((dl * t + (1 << 29)) >> 30)
+}
+
+/// `Xₐ·(Y_b·W_c − Y_c·W_b)`: one term of the facing determinant's
+/// expansion along the `X` column, for the rows `a`, `b`, `c` of three
+/// consecutive vertices. Out of line: its nine `Wide` operations once, not
+/// once a term.
+#[inline(never)]
+fn cofactor_term(a: &[i64; 4], b: &[i64; 4], c: &[i64; 4]) -> Wide {
+    let w = |v: i64| Wide::new(v, 0);
+    let minor = w(b[1]).times(&w(c[3])).add(&w(c[1]).times(&w(b[3])).neg());
+    w(a[0]).times(&minor)
 }
 
 /// Draws triangle `c`, which the lean path does not take.
@@ -116,16 +126,11 @@ where
     // −64·W·H, whose sign the window-space area of the triangle (and of each
     // piece cut from it in front of the near plane) has: negative for a
     // front face, as the set-up's doubled area.
-    // Expanded along the `X` column: Σₖ Xₖ·(Yₖ₊₁·Wₖ₊₂ − Yₖ₊₂·Wₖ₊₁), one
-    // pass of a rolled loop a vertex.
-    let w = |k: usize, r: usize| Wide::new(h[k % 3][r], 0);
+    // Expanded along the `X` column: Σₖ Xₖ·(Yₖ₊₁·Wₖ₊₂ − Yₖ₊₂·Wₖ₊₁), a
+    // term a vertex ([`cofactor_term`]).
     let mut det = Wide::ZERO;
     for k in 0..3 {
-        let minor = w(k + 1, 1)
-            .times(w(k + 2, 3))
-            .add(w(k + 2, 1).times(w(k + 1, 3)).neg());
-        det = det.add(w(k, 0).times(minor));
-        platform::keep_loop_rolled();
+        det = det.add(&cofactor_term(&h[k], &h[(k + 1) % 3], &h[(k + 2) % 3]));
     }
     if det.m == 0 || (det.m > 0 && f.options.cull) {
         return Ok(());
@@ -265,13 +270,13 @@ fn cut(poly: &mut [Corner; MAX_CORNERS], n: usize, p: &Plane, e: &[i32; 4], wind
             } else {
                 ((b, db), (a, da))
             };
-            let t = ratio30(di, di.add(dout.neg()));
+            let t = ratio30(di, di.add(&dout.neg()));
             let hc = [0, 1, 2, 3].map(|r| lerp30(i.h[r], o.h[r], t));
             // The window-space fraction s = t·W_o/W_c where both ends are
             // in front of the eye.
             let s = if window && i.h[3] > 0 && o.h[3] > 0 && hc[3] > 0 {
                 ratio30(
-                    Wide::new(t, -30).times(Wide::new(o.h[3], 0)),
+                    Wide::new(t, -30).times(&Wide::new(o.h[3], 0)),
                     Wide::new(hc[3], 0),
                 )
             } else {

@@ -360,7 +360,9 @@ fn cut<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<(i32, Samples)> {
 }
 
 /// Attributes mixed from the three vertices' `a` by `Q.30` weights `w`
-/// (summing to 2³⁰): `|a| < 2²⁶`, so each product is below 2⁵⁶.
+/// (summing to 2³⁰): `|a| < 2²⁶`, so each product is below 2⁵⁶. Out of
+/// line: the rare path's, once a corner.
+#[inline(never)]
 fn mix<const N: usize>(w: [i32; 3], a: &[[i32; N]; 3]) -> [i32; N] {
     core::array::from_fn(|i| {
         let s: i64 = (0..3).map(|j| w[j] as i64 * a[j][i] as i64).sum();

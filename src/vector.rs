@@ -867,7 +867,7 @@ pub const MAX_ANISOTROPY: u32 = 1 << 11;
 fn det_sign_bits(a: [i32; 3], cof: [i64; 3]) -> Option<(i64, i32)> {
     let terms = [0, 1, 2].map(|c| Wide::new(cof[c], 0).mul(a[c] as i64));
     let top = terms.iter().map(|t| t.bits()).max().unwrap_or(0);
-    let det = terms[0].add(terms[1]).add(terms[2]);
+    let det = terms[0].add(&terms[1]).add(&terms[2]);
     (det.m != 0 && det.bits() > top - 55).then_some((det.m.signum(), det.bits()))
 }
 

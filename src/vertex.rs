@@ -196,9 +196,9 @@ impl Rows {
             for (c, out) in rows[r].iter_mut().enumerate() {
                 let mut v = Wide::new(s as i64 * m[r][c] as i64, if c < 3 { -39 } else { -24 });
                 if c == 3 {
-                    v = v.add(Wide::new(k as i64, 0));
+                    v = v.add(&Wide::new(k as i64, 0));
                 }
-                *out = v.mul(scale).add(wc[c].mul(off));
+                *out = v.mul(scale).add(&wc[c].mul(off));
                 platform::keep_loop_rolled();
             }
         }
@@ -820,7 +820,7 @@ mod tests {
                 (got - want).abs() <= want.abs() * 2f64.powi(-50) + 1e-300,
                 "{a} {b}"
             );
-            let s = Wide::new(a, ea).add(Wide::new(b, eb));
+            let s = Wide::new(a, ea).add(&Wide::new(b, eb));
             let want = a as f64 * 2f64.powi(ea) + b as f64 * 2f64.powi(eb);
             let got = s.m as f64 * 2f64.powi(s.e);
             let scale = (a as f64 * 2f64.powi(ea))

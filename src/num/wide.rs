@@ -22,7 +22,7 @@ impl Wide {
 
     /// The same value with `|m|` in `[2⁶⁰, 2⁶¹)` (a right shift floors).
     #[inline(never)]
-    pub(crate) fn norm(self) -> Wide {
+    pub(crate) fn norm(&self) -> Wide {
         if self.m == 0 {
             return Wide::ZERO;
         }
@@ -44,7 +44,7 @@ impl Wide {
     /// halves of the mantissa (`|aₕ·b| < 2⁶⁰`, `0 ≤ aₗ·b < 2⁶²`), the high
     /// product moved up as far as it fits and the low one down to meet it.
     #[inline(never)]
-    pub(crate) fn mul(self, b: i64) -> Wide {
+    pub(crate) fn mul(&self, b: i64) -> Wide {
         debug_assert!(b.unsigned_abs() < 1 << 31);
         let a = self.norm();
         let (ah, al) = (a.m >> 31, a.m & ((1 << 31) - 1));
@@ -57,7 +57,7 @@ impl Wide {
     /// middle terms below 2⁶¹ each), the low × low product left out:
     /// within 2⁻⁵⁸ of the product.
     #[inline(never)]
-    pub(crate) fn times(self, o: Wide) -> Wide {
+    pub(crate) fn times(&self, o: &Wide) -> Wide {
         let (a, b) = (self.norm(), o.norm());
         let (ah, al) = (a.m >> 31, a.m & ((1 << 31) - 1));
         let (bh, bl) = (b.m >> 31, b.m & ((1 << 31) - 1));
@@ -66,7 +66,7 @@ impl Wide {
     }
 
     #[inline(never)]
-    pub(crate) fn add(self, o: Wide) -> Wide {
+    pub(crate) fn add(&self, o: &Wide) -> Wide {
         let (a, b) = (self.norm(), o.norm());
         if a.m == 0 {
             return b;
@@ -88,7 +88,7 @@ impl Wide {
 
     /// `|value| < 2^bits()` (a very negative number for zero).
     #[inline(never)]
-    pub(crate) fn bits(self) -> i32 {
+    pub(crate) fn bits(&self) -> i32 {
         if self.m == 0 {
             return -(1 << 20);
         }
@@ -98,7 +98,7 @@ impl Wide {
     /// The value in units of `2^e`, rounded half up (the caller picks `e`
     /// so that it fits).
     #[inline(never)]
-    pub(crate) fn at(self, e: i32) -> i64 {
+    pub(crate) fn at(&self, e: i32) -> i64 {
         let s = self.e - e;
         if s >= 0 {
             self.m << s.min(62)
