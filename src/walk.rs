@@ -52,13 +52,33 @@ impl Edge {
     #[inline(always)]
     pub(crate) fn new(a: (i32, i32), b: (i32, i32), sy: i32) -> Edge {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let d = 16 * dy;
         let n = (a.0 - 8) * dy + dx * (sy - a.1);
         // (The sample row lies at or below `a`: `0 ≤ sy − a.y`, the walk's
         // first row and its switch both.)
         if platform::STEP_QUOTIENTS && dx.unsigned_abs() <= 16 * dy as u32 && sy - a.1 <= 16 {
             return Edge::stepped(a.0, dx, dy, n);
         }
+        if platform::hardware_div32() {
+            Edge::divided(dx, dy, n)
+        } else {
+            Edge::divided_by_reciprocal(dx, dy, n)
+        }
+    }
+
+    /// [`Edge::divided`] out of line, where the core divides in software:
+    /// the divisor's reciprocal and the quotients' corrections are some
+    /// 150 instructions on a Cortex-M0+, which inlined were made in four
+    /// places (the walk's two edges, its switch in either walk), and the
+    /// call sites keep fewer values across them.
+    #[inline(never)]
+    fn divided_by_reciprocal(dx: i32, dy: i32, n: i32) -> Edge {
+        Edge::divided(dx, dy, n)
+    }
+
+    /// [`Edge::new`]'s quotients by one [`Divisor`] of `dy`.
+    #[inline(always)]
+    fn divided(dx: i32, dy: i32, n: i32) -> Edge {
+        let d = 16 * dy;
         let div = Divisor::new(dy);
         let q = div.ceil((n + 15) >> 4);
         // ⌈dx/dy⌉·dy − dx ∈ [0, dy): the remainder's step, in 16ths.
