@@ -93,10 +93,11 @@ impl Row {
         e: 0,
     };
 
-    /// The row of coefficients `c` and constant `k` at exponent `e`.
-    fn at(c: [Wide; 3], k: Wide, e: i32) -> Row {
-        let g = c.map(|w| w.at(e) as i32);
-        let t = k.at(e);
+    /// The row of coefficients `v[..3]` and constant `v[3]` at exponent
+    /// `e`.
+    fn at(v: &[Wide; 4], e: i32) -> Row {
+        let g = [v[0].at(e) as i32, v[1].at(e) as i32, v[2].at(e) as i32];
+        let t = v[3].at(e);
         Row {
             g,
             t,
@@ -108,10 +109,11 @@ impl Row {
         }
     }
 
-    /// The least exponent at which `c` and `k` keep the row's bounds.
-    fn exponent(c: [Wide; 3], k: Wide) -> i32 {
-        let b = c.iter().map(|w| w.bits() - 28).max().unwrap_or(0);
-        b.max(k.bits() - 43)
+    /// The least exponent at which the coefficients `v[..3]` and the
+    /// constant `v[3]` keep the row's bounds.
+    fn exponent(v: &[Wide; 4]) -> i32 {
+        let b = v[..3].iter().map(|w| w.bits() - 28).max().unwrap_or(0);
+        b.max(v[3].bits() - 43)
     }
 
     /// `V(q)`, exactly: each product below 2⁴³.
@@ -202,11 +204,9 @@ impl Rows {
                 platform::keep_loop_rolled();
             }
         }
-        let split = |v: &[Wide; 4]| ([v[0], v[1], v[2]], v[3]);
         let mut natural = [0; 4];
         for (n, v) in natural.iter_mut().zip(&rows) {
-            let (c, k) = split(v);
-            *n = Row::exponent(c, k);
+            *n = Row::exponent(v);
             platform::keep_loop_rolled();
         }
         let ew = natural[3];
@@ -219,8 +219,7 @@ impl Rows {
             contained: false,
         };
         for (k, row) in out.r.iter_mut().enumerate() {
-            let (c, t) = split(&rows[k]);
-            *row = Row::at(c, t, e[k]);
+            *row = Row::at(&rows[k], e[k]);
             platform::keep_loop_rolled();
         }
         out.contained = fast && Rows::corners().all(|q| out.lean(out.exact(q)));
@@ -849,7 +848,8 @@ mod tests {
                 (next() >> 19) as i64 * if next() & 1 == 0 { 1 } else { -1 },
                 0,
             );
-            let row = Row::at(c, k, Row::exponent(c, k));
+            let v = [c[0], c[1], c[2], k];
+            let row = Row::at(&v, Row::exponent(&v));
             assert!(row.g.iter().all(|g| g.unsigned_abs() <= 1 << 28));
             assert!(row.t.unsigned_abs() <= 1 << 43);
             for q in Rows::corners().chain((0..20).map(|_| [0, 1, 2].map(|_| next() as i16))) {
