@@ -7,6 +7,7 @@
 //! `I40F24`: at most `2³¹ · 2⁷ ≈ 2³⁸` raw for a coefficient below 2⁷).
 
 use crate::mesh::Bounds;
+use crate::num::division::div_rem_u64;
 use crate::num::widening::mul_i32;
 use crate::platform;
 use crate::vector::{FormatError, Mat4, Vec3, COORD_FRAC};
@@ -365,7 +366,7 @@ impl Camera {
         }
         let l = &self.lens;
         // kx·h/w from Q.32 to Q.24, rounded half up.
-        let sx = (l.kx * h + (w << 7)) / (w << 8);
+        let sx = div_rem_u64(l.kx * h + (w << 7), w << 8).0;
         if sx > COEFF_LIMIT as u64 {
             return Err(CameraError::BadProjection);
         }

@@ -15,8 +15,9 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::face_normal;
-use crate::num::division::floor_div;
+use crate::num::widening::mul_u32;
 use crate::options::{DrawStats, RenderOptions, ShadingKind, ShadingMode};
+use crate::platform;
 use crate::setup::{self, Rect, Samples, SetUp, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
@@ -379,12 +380,105 @@ fn mix_wide(w: [i32; 3], a: &[[i64; 3]; 3]) -> [i64; 3] {
     })
 }
 
-/// The centroid of three eye-space points (sums in `i64`, rounded).
+/// The centroid of three eye-space points, each coordinate `⌊(2s +
+/// 3)/6⌋` of its sum `s` (a third, rounded half up), in 32-bit steps: with
+/// each `bₖ = 3qₖ + rₖ` (`rₖ ∈ {0, 1, 2}`, [`floor_third`]), `s = 3Σq +
+/// Σr`, so the value is `Σq + ⌊(2Σr + 3)/6⌋`: 1 from `Σr = 2` on, 2
+/// from 5.
 fn centroid(e: [Vec3; 3]) -> Vec3 {
-    let b = e.map(|v| v.to_bits());
-    let c = [0, 1, 2].map(|k| {
-        let s = b[0][k] as i64 + b[1][k] as i64 + b[2][k] as i64;
-        floor_div(2 * s + 3, 6) as i32
-    });
+    let b = [e[0].to_bits(), e[1].to_bits(), e[2].to_bits()];
+    let mut c = [0; 3];
+    for (k, out) in c.iter_mut().enumerate() {
+        // Wrapping: the value lies within `i32`, the sums may pass its
+        // ends on the way (three coordinates at `i32::MIN`).
+        let (mut q, mut r) = (0i32, 0i32);
+        for v in &b {
+            let t = floor_third(v[k]);
+            q = q.wrapping_add(t);
+            r += v[k].wrapping_sub(t.wrapping_mul(3));
+        }
+        *out = q.wrapping_add(i32::from(r >= 2) + i32::from(r >= 5));
+    }
     Vec3::from_bits(c[0], c[1], c[2])
+}
+
+/// `⌊b/3⌋` without a division: for `u < 2³²`, `⌊u/3⌋ = ⌊u·(2³³ + 1)/3 /
+/// 2³³⌋` (`0xAAAA_AAAB = (2³³ + 1)/3`; the excess `u/(3·2³³)` stays below
+/// the gap to the next third), or where a 64-bit product is made from
+/// 16-bit ones, [`third_by_shifts`]; for `b < 0`, `⌊b/3⌋ = −1 − ⌊(−1 −
+/// b)/3⌋`, `−1 − x` being `!x`.
+#[inline(always)]
+fn floor_third(b: i32) -> i32 {
+    let m = b >> 31;
+    let u = (b ^ m) as u32;
+    let q = if platform::SOFT_MUL64 {
+        third_by_shifts(u)
+    } else {
+        (mul_u32(u, 0xAAAA_AAAB) >> 33) as u32
+    };
+    (q as i32) ^ m
+}
+
+/// `⌊u/3⌋` by shifts and adds: `q ≈ u·(1/4 + 1/16 + …)` (`1/3` in binary,
+/// `0.0101…`), below `u/3` by at most 5, then the remainder `u − 3q ≤
+/// 15`'s third, `⌊11r/32⌋` (Warren, *Hacker's Delight*, `divu3`).
+#[inline(always)]
+fn third_by_shifts(u: u32) -> u32 {
+    let mut q = (u >> 2) + (u >> 4);
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    let r = u - 3 * q;
+    q + ((11 * r) >> 5)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tests::xorshift;
+
+    /// A third without a division is the floor division, at `i32`'s ends
+    /// and between; the centroid is the sums' third rounded half up.
+    #[test]
+    fn thirds_are_the_division() {
+        let mut next = xorshift(0x1319_8a2e_0370_7344);
+        let ends = [
+            0,
+            1,
+            2,
+            3,
+            -1,
+            -2,
+            -3,
+            -4,
+            i32::MAX,
+            i32::MIN,
+            i32::MAX - 1,
+            i32::MIN + 1,
+        ];
+        for b in ends
+            .into_iter()
+            .chain((0..200_000).map(|_| next() as i32 >> (next() % 32)))
+        {
+            assert_eq!(floor_third(b) as i64, (b as i64).div_euclid(3), "{b}");
+            let u = b as u32;
+            assert_eq!(third_by_shifts(u), u / 3, "{u}");
+        }
+        for i in 0..100_000 {
+            let mut r = || {
+                let v = next() as i32 >> (next() % 32);
+                if i % 7 == 0 {
+                    [i32::MAX, i32::MIN, -1][(next() % 3) as usize]
+                } else {
+                    v
+                }
+            };
+            let p = [[r(), r(), r()], [r(), r(), r()], [r(), r(), r()]];
+            let c = centroid(p.map(|v| Vec3::from_bits(v[0], v[1], v[2]))).to_bits();
+            for k in 0..3 {
+                let s: i64 = p.iter().map(|v| v[k] as i64).sum();
+                assert_eq!(c[k] as i64, (2 * s + 3).div_euclid(6), "{p:?}");
+            }
+        }
+    }
 }

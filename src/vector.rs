@@ -27,6 +27,7 @@
 //! `2⁶⁴`… which is why [`Mat4::transform_point`] sums at most four products
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
+use crate::num::division::DivInt;
 use crate::num::widening::{mul_i32, mul_i32_i16};
 use crate::num::Wide;
 use crate::platform;
@@ -842,7 +843,7 @@ pub fn normal_matrix(m: &Mat4) -> Option<[[i16; 3]; 3]> {
     let max = (max >> sh) as i64;
     let mut out = [[0i16; 3]; 3];
     for (o, v) in out.iter_mut().flatten().zip(cof.iter().flatten()) {
-        *o = ((((v >> sh) * sign) << 14) / max) as i16;
+        *o = ((((v >> sh) * sign) << 14).quot(max)) as i16;
         // Once a draw: nine passes of one division, not nine bodies.
         platform::keep_loop_rolled();
     }

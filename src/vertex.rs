@@ -35,7 +35,7 @@ use crate::light::{LightSet, PreparedLights};
 use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::normalize::normalize;
-use crate::num::division::{floor_div, recip_fast};
+use crate::num::division::{div_rem_u64, floor_div, recip_fast};
 use crate::num::widening::{mul_i32_i16, mul_i32_u32, mul_i32_u32_shr31};
 use crate::num::Wide;
 use crate::options::DrawStats;
@@ -419,12 +419,14 @@ fn quotient(v: i64, s: i32, w: i64) -> Option<i64> {
         return Some((f + 1) >> 1);
     }
     // floor(|v|·2^(s+1)/w) in digits.
-    let (mut q, mut r) = (v.unsigned_abs() as i64 / w, v.unsigned_abs() as i64 % w);
+    let (q, r) = div_rem_u64(v.unsigned_abs(), w as u64);
+    let (mut q, mut r) = (q as i64, r as i64);
     let mut left = s + 1;
     while left > 0 {
         let c = left.min(16);
-        q = (q << c) + (r << c) / w;
-        r = (r << c) % w;
+        let (dq, dr) = div_rem_u64((r << c) as u64, w as u64);
+        q = (q << c) + dq as i64;
+        r = dr as i64;
         left -= c;
         if q >> 42 != 0 {
             return None;

@@ -36,17 +36,130 @@ pub(crate) trait DivInt:
     + Rem<Output = Self>
     + Sub<Output = Self>
 {
+    /// Whether [`floor_div`] takes [`floor_div_shifted`]'s form: where a
+    /// 64-bit multiply is a library call (the other form's remainder is
+    /// one), and for `i64` where a 64-bit division is not the core's.
+    const SHIFTED: bool;
+
+    /// The quotient rounded toward zero (`b > 0`).
+    fn quot(self, b: Self) -> Self;
 }
 
-impl DivInt for i32 {}
-impl DivInt for i64 {}
+impl DivInt for i32 {
+    const SHIFTED: bool = platform::SOFT_MUL64;
+
+    #[inline(always)]
+    fn quot(self, b: i32) -> i32 {
+        self / b
+    }
+}
+
+impl DivInt for i64 {
+    const SHIFTED: bool = platform::SOFT_MUL64 || !platform::NATIVE_DIV64;
+
+    /// [`div_rem_u64`] of the magnitude, signed again.
+    #[inline(always)]
+    fn quot(self, b: i64) -> i64 {
+        let q = div_rem_u64(self.unsigned_abs(), b as u64).0 as i64;
+        if self < 0 {
+            -q
+        } else {
+            q
+        }
+    }
+}
+
+/// `(⌊n/d⌋, n mod d)` for `d > 0`: the core's division on a 64-bit core;
+/// on a 32-bit one, where a 64-bit division is a library routine of
+/// about a kilobyte, from 32-bit divisions ([`div_rem_u64_by_digits`]).
+#[inline(never)]
+pub(crate) fn div_rem_u64(n: u64, d: u64) -> (u64, u64) {
+    debug_assert!(d > 0);
+    if platform::NATIVE_DIV64 || d == 0 {
+        return (n.checked_div(d).unwrap_or(0), n.checked_rem(d).unwrap_or(n));
+    }
+    div_rem_u64_by_digits(n, d)
+}
+
+/// [`div_rem_u64`] on a 32-bit core (`d > 0`): a divisor below 2³² takes
+/// the high word's quotient by one 32-bit division and the rest by
+/// [`div_rem_digits`]; a larger one, whose quotient has at most 32 bits,
+/// a shift and subtraction a bit.
+fn div_rem_u64_by_digits(n: u64, d: u64) -> (u64, u64) {
+    if d >> 32 == 0 {
+        let d = d as u32;
+        let hi = (n >> 32) as u32;
+        let (qh, rh) = (hi / d, hi % d);
+        let (ql, r) = div_rem_digits(rh, n as u32, d);
+        return (((qh as u64) << 32) | ql as u64, r as u64);
+    }
+    if n < d {
+        return (0, n);
+    }
+    // d·2ᵏ has n's top bit: the quotient has at most k + 1 bits.
+    let k = d.leading_zeros() - n.leading_zeros();
+    let (mut rem, mut div, mut q) = (n, d << k, 0u64);
+    for _ in 0..=k {
+        q <<= 1;
+        if rem >= div {
+            rem -= div;
+            q |= 1;
+        }
+        div >>= 1;
+    }
+    (q, rem)
+}
+
+/// `⌊(u₁·2³² + u₀)/v⌋` and the remainder, for `u₁ < v` (so the quotient
+/// fits 32 bits): long division in 16-bit digits by the normalised
+/// divisor (`v·2ˢ ≥ 2³¹`), each digit estimated from the divisor's high
+/// half and corrected down at most twice (Knuth's algorithm D, as
+/// Warren's *Hacker's Delight* lays it out for two digits). Every product
+/// below 2³² where it is formed: an estimate is tested against `2¹⁶`
+/// before it is multiplied, and a partial remainder is below `v·2ˢ`
+/// (wrapping sums elsewhere).
+fn div_rem_digits(u1: u32, u0: u32, v: u32) -> (u32, u32) {
+    const B: u32 = 1 << 16;
+    let s = v.leading_zeros();
+    let v = v << s;
+    let (vn1, vn0) = (v >> 16, v & 0xFFFF);
+    let un32 = if s == 0 {
+        u1
+    } else {
+        (u1 << s) | (u0 >> (32 - s))
+    };
+    let un10 = u0 << s;
+    let (un1, un0) = (un10 >> 16, un10 & 0xFFFF);
+    let digit = |top: u32, next: u32| {
+        let mut q = top / vn1;
+        let mut rhat = top - q * vn1;
+        while q >= B || q * vn0 > (rhat << 16) + next {
+            q -= 1;
+            rhat += vn1;
+            if rhat >= B {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(un32, un1);
+    let un21 = (un32 << 16)
+        .wrapping_add(un1)
+        .wrapping_sub(q1.wrapping_mul(v));
+    let q0 = digit(un21, un0);
+    let r = (un21 << 16)
+        .wrapping_add(un0)
+        .wrapping_sub(q0.wrapping_mul(v))
+        >> s;
+    ((q1 << 16) | q0, r)
+}
 
 /// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
 /// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
 /// [`floor_div_rem`] (the same value).
 #[inline]
 pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
-    if platform::SOFT_MUL64 {
+    if T::SHIFTED {
         floor_div_shifted(a, b)
     } else {
         floor_div_rem(a, b)
@@ -71,9 +184,9 @@ fn floor_div_rem<T: DivInt>(a: T, b: T) -> T {
 #[inline]
 fn floor_div_shifted<T: DivInt>(a: T, b: T) -> T {
     if a < T::from(0) {
-        (a - b + T::from(1)) / b
+        (a - b + T::from(1)).quot(b)
     } else {
-        a / b
+        a.quot(b)
     }
 }
 
@@ -242,8 +355,34 @@ fn chord(d: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{floor_div_rem, floor_div_shifted, recip_fast, Divisor};
+    use super::{div_rem_u64_by_digits, floor_div_rem, floor_div_shifted, recip_fast, Divisor};
     use crate::tests::xorshift;
+
+    /// The 32-bit cores' 64-bit division is the division: divisors of
+    /// every size (below 2³² by digits, above by steps), normalised or
+    /// not, numerators at both ends and around the divisor's multiples.
+    #[test]
+    fn digit_division_is_the_division() {
+        let mut next = xorshift(0x243f_6a88_85a3_08d3);
+        let mut ds: Vec<u64> = vec![1, 2, 3, 6, 0xFFFF, 0x1_0000, 0x8000_0000, 0xFFFF_FFFF];
+        ds.extend([1 << 32, (1 << 32) + 1, u64::MAX, 1 << 63, (1 << 46) - 1]);
+        ds.extend((0..4000).map(|_| (next() >> (next() % 64)).max(1)));
+        let mut count = 0;
+        for d in ds {
+            let mut ns = vec![0, 1, d - 1, d, d.wrapping_add(1), u64::MAX, u64::MAX - 1];
+            ns.extend([d.wrapping_mul(0xFFFF_FFFF), d.wrapping_mul(0x1_0000_0001)]);
+            ns.extend((0..40).map(|_| next() >> (next() % 64)));
+            let q = next() >> (next() % 64);
+            if let Some(m) = q.checked_mul(d) {
+                ns.extend([m, m.wrapping_sub(1), m.wrapping_add(1)]);
+            }
+            for n in ns {
+                assert_eq!(div_rem_u64_by_digits(n, d), (n / d, n % d), "{n} / {d}");
+                count += 1;
+            }
+        }
+        assert!(count > 150_000, "{count}");
+    }
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
     /// takes the remainder, in `i64` and `i32`: numerators of both signs and
