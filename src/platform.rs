@@ -770,6 +770,24 @@ pub(crate) const FLAGS_AT: usize = 12;
 #[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
 pub(crate) const RARE_BIT: u32 = 22;
 
+/// A kept triangle as the scan found it ([`skip_culled`]): its doubled
+/// area and, where the scan makes it ([`BOX_IN_SCAN`]), the box of its
+/// window positions, packed as an entry's first word is (`x` in the low
+/// half, `y` in the high), its least and greatest corner.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Found {
+    pub(crate) area: i32,
+    pub(crate) lo: u32,
+    pub(crate) hi: u32,
+}
+
+/// Whether [`skip_culled`] gives a kept triangle's box: on ARMv7-M, ten
+/// instructions of halfword SIMD (`ssub16` and `sel` for the least and
+/// greatest of each half, `sadd16` back from the differences) on the
+/// positions the area was made from, where the compiled minima and maxima
+/// of six loaded halves were some thirty with their spills.
+pub(crate) const BOX_IN_SCAN: bool = cfg!(fixshade_thumb2);
+
 /// The first triangle of `tris` (`[u16; 3]` vertex indices, up to `end`)
 /// the whole-frame loop must look at, and its doubled area: one with a
 /// corner the rare path takes (flag [`RARE_BIT`] of the entry's word at
@@ -796,10 +814,10 @@ pub(crate) unsafe fn skip_culled(
     end: *const [u16; 3],
     cache: *const u8,
     cull: bool,
-) -> Option<(*const [u16; 3], i32)> {
+) -> Option<(*const [u16; 3], Found)> {
     #[cfg(fixshade_thumb2)]
     {
-        let (at, area): (*const [u16; 3], i32);
+        let (at, area, lo, hi): (*const [u16; 3], i32, u32, u32);
         // SAFETY: the caller's contract: each pass reads one triangle's
         // three indices and, for each, its entry's first word and flags
         // word; it stops at `end`.
@@ -828,14 +846,30 @@ pub(crate) unsafe fn skip_culled(
                 "ssub16 {c}, {c}, {a}",
                 "smusdx {area}, {b}, {c}",
                 "cmp {area}, #0",
-                "blt 9f",
+                "blt 8f",
                 "beq 2f",
                 "cmp {cull}, #0",
-                "beq 9f",
+                "beq 8f",
                 "2:",
                 "adds {p}, #6",
                 "cmp {p}, {end}",
                 "bne 1b",
+                "b 9f",
+                // A kept triangle's box: the least and greatest of the
+                // differences b − a, c − a and 0 in each half (`sel` after
+                // `ssub16` takes each half by its own comparison), then a
+                // added back. (Differences within ±2¹⁵ in the guard band.)
+                "8:",
+                "ssub16 {t}, {b}, {c}",
+                "sel {t}, {b}, {c}",
+                "sel {u}, {c}, {b}",
+                "mov {c}, #0",
+                "ssub16 {b}, {t}, {c}",
+                "sel {t}, {t}, {c}",
+                "ssub16 {b}, {u}, {c}",
+                "sel {u}, {c}, {u}",
+                "sadd16 {u}, {a}, {u}",
+                "sadd16 {t}, {a}, {t}",
                 "9:",
                 p = inout(reg) tris => at,
                 end = in(reg) end,
@@ -847,12 +881,12 @@ pub(crate) unsafe fn skip_culled(
                 a = out(reg) _,
                 b = out(reg) _,
                 c = out(reg) _,
-                t = out(reg) _,
-                u = out(reg) _,
+                t = out(reg) hi,
+                u = out(reg) lo,
                 options(readonly, nostack),
             );
         }
-        Some((at, area))
+        Some((at, Found { area, lo, hi }))
     }
     #[cfg(fixshade_thumb1)]
     {
@@ -927,7 +961,7 @@ pub(crate) unsafe fn skip_culled(
                 options(readonly),
             );
         }
-        Some((at, area))
+        Some((at, Found { area, lo: 0, hi: 0 }))
     }
     #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
     {

@@ -222,7 +222,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
             // triangle before `end`); the mesh is validated, so every index
             // is below the cache's length, `n`.
-            while let Some((next, area)) =
+            while let Some((next, found)) =
                 unsafe { platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull) }
             {
                 if next == end {
@@ -233,7 +233,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
                 // SAFETY: as below; `area` is the kept triangle's (a rare
                 // one finds its own).
                 unsafe {
-                    frame.triangle::<M, O, D>(cache, idx, idx, Some(area), out, depth, &mut stats)
+                    frame.triangle::<M, O, D>(cache, idx, idx, Some(found), out, depth, &mut stats)
                 }
                 .map_err(RenderError::Target)?;
                 // SAFETY: `next` is before `end`.

@@ -26,6 +26,7 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::options::{DrawStats, ShadingMode};
+use crate::platform::{self, Found};
 use crate::setup::Samples;
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
@@ -36,7 +37,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Culls, lights and draws one triangle: mesh vertices `vertex`,
     /// projected into `cache[slot]`; `known`, where the caller has found it
     /// (`platform::skip_culled`), the doubled area of its kept window
-    /// positions, neither 0 nor culled, for a triangle the lean path takes.
+    /// positions, neither 0 nor culled, for a triangle the lean path takes
+    /// (and their box, where the scan makes it).
     /// (The corners are gathered only for a triangle that passes the cheap
     /// tests: built for every triangle, they were stored to the stack for
     /// every triangle.)
@@ -56,7 +58,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         cache: &mut [CachedVertex],
         slot: [usize; 3],
         vertex: [usize; 3],
-        known: Option<i32>,
+        known: Option<Found>,
         out: &mut O,
         depth: &mut D,
         stats: &mut DrawStats,
@@ -73,7 +75,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             return clip::triangle::<M, O, D, S, V, L>(self, c, out, depth, stats);
         }
         let area = match known {
-            Some(area) => area,
+            Some(f) => f.area,
             None => {
                 let xy = [v0.xy(), v1.xy(), v2.xy()];
                 let area = (xy[1][0] - xy[0][0]) * (xy[2][1] - xy[0][1])
@@ -86,9 +88,18 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         };
         // The depths only for a triangle culling keeps.
         let p = [v0.position(), v1.position(), v2.position()];
-        let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
-        let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
-        let (lo, hi) = ((lo(0), lo(1)), (hi(0), hi(1)));
+        let (lo, hi) = match known {
+            // Each half of the packed corners, sign-extended.
+            Some(f) if platform::BOX_IN_SCAN => {
+                let xy = |w: u32| ((w as i32) << 16 >> 16, w as i32 >> 16);
+                (xy(f.lo), xy(f.hi))
+            }
+            _ => {
+                let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
+                let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
+                ((lo(0), lo(1)), (hi(0), hi(1)))
+            }
+        };
         // The samples the box holds, if any: the cheap test that spares
         // off-screen and tiny triangles their lighting and set-up; the
         // set-up takes them as found here.
