@@ -222,9 +222,12 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
             // triangle before `end`); the mesh is validated, so every index
             // is below the cache's length, `n`.
-            while let Some((next, found)) =
-                unsafe { platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull) }
-            {
+            // Whether an entry may have the rare path's flag.
+            let rare = !frame.stage.rows.contained();
+            debug_assert!(rare || cache.iter().all(|v| v.rare_bits() == 0));
+            while let Some((next, found)) = unsafe {
+                platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull, rare)
+            } {
                 if next == end {
                     return Ok(stats);
                 }

@@ -283,6 +283,13 @@ impl Rows {
         }
     }
 
+    /// Whether every vertex of the draw takes the lean path's 32-bit form
+    /// without a test: no cache entry of the draw has the rare path's flag.
+    #[inline(always)]
+    pub(crate) fn contained(&self) -> bool {
+        self.contained
+    }
+
     /// [`Rows::window`] from the fast rows' [`Rows::fourteen`] `v`.
     #[inline(always)]
     fn window_of(&self, v: [i32; 4]) -> Window {
