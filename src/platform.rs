@@ -770,6 +770,121 @@ pub(crate) const FLAGS_AT: usize = 12;
 #[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
 pub(crate) const RARE_BIT: u32 = 22;
 
+/// ARMv7-M, [`skip_culled`]'s loops: the addresses of the three entries
+/// of the triangle at `{p}` into `{a}`, `{b}`, `{c}`.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_entries {
+    () => {
+        concat!(
+            "ldrh {a}, [{p}]\n",
+            "ldrh {b}, [{p}, #2]\n",
+            "ldrh {c}, [{p}, #4]\n",
+            "add {a}, {base}, {a}, lsl #4\n",
+            "add {b}, {base}, {b}, lsl #4\n",
+            "add {c}, {base}, {c}, lsl #4\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`skip_culled`]'s loops: the doubled area of the entries at
+/// `{a}`, `{b}`, `{c}` (their first words) into `{area}`; a kept triangle
+/// to `8f`, else on from the next (`skip`, the local label stepping
+/// `{p}`; `head`, its loop's) or to `9f` at `{end}`.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_area_next {
+    ($skip:literal, $head:literal) => {
+        concat!(
+            "ldr {a}, [{a}]\n",
+            "ldr {b}, [{b}]\n",
+            "ldr {c}, [{c}]\n",
+            "ssub16 {b}, {b}, {a}\n",
+            "ssub16 {c}, {c}, {a}\n",
+            "smusdx {area}, {b}, {c}\n",
+            "cmp {area}, #0\n",
+            "blt 8f\n",
+            "beq ",
+            $skip,
+            "f\n",
+            "tst {mode}, #1\n",
+            "beq 8f\n",
+            $skip,
+            ":\n",
+            "adds {p}, #6\n",
+            "cmp {p}, {end}\n",
+            "bne ",
+            $head,
+            "b\n",
+            "b 9f\n",
+        )
+    };
+}
+
+/// ARMv6-M, [`skip_culled`]'s loops: the byte offsets of the three
+/// entries of the triangle at r0 into r4, r5 and r6.
+#[cfg(fixshade_thumb1)]
+macro_rules! thumb1_offsets {
+    () => {
+        concat!(
+            "ldrh r4, [r0, #0]\n",
+            "ldrh r5, [r0, #2]\n",
+            "ldrh r6, [r0, #4]\n",
+            "lsls r4, r4, #4\n",
+            "lsls r5, r5, #4\n",
+            "lsls r6, r6, #4\n",
+        )
+    };
+}
+
+/// ARMv6-M, [`skip_culled`]'s loops: the doubled area of the entries'
+/// first words in r7, r1 and r3 into r1 (r3–r7 taken), its flags set by
+/// the last `subs`.
+#[cfg(fixshade_thumb1)]
+macro_rules! thumb1_area {
+    () => {
+        concat!(
+            "asrs r4, r7, #16\n",
+            "asrs r5, r1, #16\n",
+            "asrs r6, r3, #16\n",
+            "subs r5, r5, r4\n",
+            "subs r6, r6, r4\n",
+            "sxth r7, r7\n",
+            "sxth r1, r1\n",
+            "sxth r3, r3\n",
+            "subs r1, r1, r7\n",
+            "subs r3, r3, r7\n",
+            "muls r1, r6, r1\n",
+            "muls r3, r5, r3\n",
+            "subs r1, r1, r3\n",
+        )
+    };
+}
+
+/// ARMv6-M, after [`thumb1_area`]: a kept triangle to `8f` (cull, bit 0
+/// of the mode, in r9), else on from the next (`skip`, the local label
+/// stepping r0; `head`, its loop's) or to `9f` at the end (r8).
+#[cfg(fixshade_thumb1)]
+macro_rules! thumb1_next {
+    ($skip:literal, $head:literal) => {
+        concat!(
+            "beq ",
+            $skip,
+            "f\n",
+            "bmi 8f\n",
+            "mov r7, r9\n",
+            "lsls r7, r7, #31\n",
+            "beq 8f\n",
+            $skip,
+            ":\n",
+            "adds r0, #6\n",
+            "cmp r0, r8\n",
+            "bne ",
+            $head,
+            "b\n",
+            "b 9f\n",
+        )
+    };
+}
+
 /// A kept triangle as the scan found it ([`skip_culled`]): its doubled
 /// area and, where the scan makes it ([`BOX_IN_SCAN`]), the box of its
 /// window positions, packed as an entry's first word is (`x` in the low
@@ -835,12 +950,7 @@ pub(crate) unsafe fn skip_culled(
                 "tst {mode}, #2",
                 "beq 3f",
                 "1:",
-                "ldrh {a}, [{p}]",
-                "ldrh {b}, [{p}, #2]",
-                "ldrh {c}, [{p}, #4]",
-                "add {a}, {base}, {a}, lsl #4",
-                "add {b}, {base}, {b}, lsl #4",
-                "add {c}, {base}, {c}, lsl #4",
+                thumb2_entries!(),
                 "ldr {t}, [{a}, #{flags}]",
                 "ldr {u}, [{b}, #{flags}]",
                 "orrs {t}, {u}",
@@ -848,46 +958,11 @@ pub(crate) unsafe fn skip_culled(
                 "orrs {t}, {u}",
                 "tst {t}, #{rare}",
                 "bne 9f",
-                "ldr {a}, [{a}]",
-                "ldr {b}, [{b}]",
-                "ldr {c}, [{c}]",
-                "ssub16 {b}, {b}, {a}",
-                "ssub16 {c}, {c}, {a}",
-                "smusdx {area}, {b}, {c}",
-                "cmp {area}, #0",
-                "blt 8f",
-                "beq 2f",
-                "tst {mode}, #1",
-                "beq 8f",
-                "2:",
-                "adds {p}, #6",
-                "cmp {p}, {end}",
-                "bne 1b",
-                "b 9f",
+                thumb2_area_next!("2", "1"),
                 // The same without the flags.
                 "3:",
-                "ldrh {a}, [{p}]",
-                "ldrh {b}, [{p}, #2]",
-                "ldrh {c}, [{p}, #4]",
-                "add {a}, {base}, {a}, lsl #4",
-                "add {b}, {base}, {b}, lsl #4",
-                "add {c}, {base}, {c}, lsl #4",
-                "ldr {a}, [{a}]",
-                "ldr {b}, [{b}]",
-                "ldr {c}, [{c}]",
-                "ssub16 {b}, {b}, {a}",
-                "ssub16 {c}, {c}, {a}",
-                "smusdx {area}, {b}, {c}",
-                "cmp {area}, #0",
-                "blt 8f",
-                "beq 4f",
-                "tst {mode}, #1",
-                "beq 8f",
-                "4:",
-                "adds {p}, #6",
-                "cmp {p}, {end}",
-                "bne 3b",
-                "b 9f",
+                thumb2_entries!(),
+                thumb2_area_next!("4", "3"),
                 // A kept triangle's box: the least and greatest of the
                 // differences b − a, c − a and 0 in each half (`sel` after
                 // `ssub16` takes each half by its own comparison), then a
@@ -938,12 +1013,7 @@ pub(crate) unsafe fn skip_culled(
                 "lsls r7, r3, #30",
                 "bpl 3f",
                 "1:",
-                "ldrh r4, [r0, #0]",
-                "ldrh r5, [r0, #2]",
-                "ldrh r6, [r0, #4]",
-                "lsls r4, r4, #4",
-                "lsls r5, r5, #4",
-                "lsls r6, r6, #4",
+                thumb1_offsets!(),
                 "adds r4, r4, r2",
                 "adds r5, r5, r2",
                 "adds r6, r6, r2",
@@ -957,63 +1027,16 @@ pub(crate) unsafe fn skip_culled(
                 "ldr r7, [r4, #0]",
                 "ldr r1, [r5, #0]",
                 "ldr r3, [r6, #0]",
-                "asrs r4, r7, #16",
-                "asrs r5, r1, #16",
-                "asrs r6, r3, #16",
-                "subs r5, r5, r4",
-                "subs r6, r6, r4",
-                "sxth r7, r7",
-                "sxth r1, r1",
-                "sxth r3, r3",
-                "subs r1, r1, r7",
-                "subs r3, r3, r7",
-                "muls r1, r6, r1",
-                "muls r3, r5, r3",
-                "subs r1, r1, r3",
-                "beq 2f",
-                "bmi 8f",
-                "mov r7, r9",
-                "lsls r7, r7, #31",
-                "beq 8f",
-                "2:",
-                "adds r0, #6",
-                "cmp r0, r8",
-                "bne 1b",
-                "b 9f",
+                thumb1_area!(),
+                thumb1_next!("2", "1"),
                 // The same without the flags.
                 "3:",
-                "ldrh r4, [r0, #0]",
-                "ldrh r5, [r0, #2]",
-                "ldrh r6, [r0, #4]",
-                "lsls r4, r4, #4",
-                "lsls r5, r5, #4",
-                "lsls r6, r6, #4",
+                thumb1_offsets!(),
                 "ldr r7, [r4, r2]",
                 "ldr r1, [r5, r2]",
                 "ldr r3, [r6, r2]",
-                "asrs r4, r7, #16",
-                "asrs r5, r1, #16",
-                "asrs r6, r3, #16",
-                "subs r5, r5, r4",
-                "subs r6, r6, r4",
-                "sxth r7, r7",
-                "sxth r1, r1",
-                "sxth r3, r3",
-                "subs r1, r1, r7",
-                "subs r3, r3, r7",
-                "muls r1, r6, r1",
-                "muls r3, r5, r3",
-                "subs r1, r1, r3",
-                "beq 4f",
-                "bmi 8f",
-                "mov r7, r9",
-                "lsls r7, r7, #31",
-                "beq 8f",
-                "4:",
-                "adds r0, #6",
-                "cmp r0, r8",
-                "bne 3b",
-                "b 9f",
+                thumb1_area!(),
+                thumb1_next!("4", "3"),
                 "8:",
                 "mov r3, r1",
                 "9:",
