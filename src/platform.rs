@@ -37,8 +37,11 @@ pub(crate) const fn hardware_div32() -> bool {
 /// The core divides 64-bit numbers itself: a 64-bit target. On a 32-bit
 /// one a 64-bit division is a library routine of about a kilobyte of
 /// flash, and the kernel's few (the rare path's, once a draw's) take
-/// shifts and subtractions instead ([`div_rem_u64`](crate::num::division::div_rem_u64)).
-pub(crate) const NATIVE_DIV64: bool = cfg!(target_pointer_width = "64");
+/// 32-bit divisions instead ([`div_rem_u64`](crate::num::division::div_rem_u64)),
+/// as they do on the host under `--cfg fixshade_soft_div32` (the test
+/// suite and the fuzz target run them so).
+pub(crate) const NATIVE_DIV64: bool =
+    cfg!(target_pointer_width = "64") && !cfg!(fixshade_soft_div32);
 
 /// Whether a triangle of a few samples tests each against its edge
 /// functions rather than walking its edges (`src/setup.rs`): where the
