@@ -220,21 +220,21 @@ fn band_clip(
     o: (i32, i32),
     depth: bool,
 ) -> usize {
-    // x − o ≤ G: (G + o)·W − X ≥ 0; x − o ≥ −G: X + (G − o)·W ≥ 0; y alike.
+    // x − o ≤ G: (G + o)·W − X ≥ 0; x − o ≥ −G: X + (G − o)·W ≥ 0; y alike;
+    // and 1.5·2²⁴ ≥ depth attribute. Plane k: axis k/2, negated for even k.
     let g = (GUARD - 40) as i64;
     let one = Wide::new(1, 0);
-    let (ox, oy) = (o.0 as i64, o.1 as i64);
-    let planes: [Plane; 5] = [
-        [one.neg(), Wide::ZERO, Wide::ZERO, Wide::new(g + ox, 0)],
-        [one, Wide::ZERO, Wide::ZERO, Wide::new(g - ox, 0)],
-        [Wide::ZERO, one.neg(), Wide::ZERO, Wide::new(g + oy, 0)],
-        [Wide::ZERO, one, Wide::ZERO, Wide::new(g - oy, 0)],
-        // 1.5·2²⁴ ≥ depth attribute.
-        [Wide::ZERO, Wide::ZERO, one.neg(), Wide::new(3, 23)],
-    ];
+    let o = [o.0 as i64, o.1 as i64];
     let mut n = n;
-    for p in &planes[..if depth { 5 } else { 4 }] {
-        n = cut(poly, n, p, e, true);
+    for k in 0..if depth { 5 } else { 4 } {
+        let (axis, neg) = (k >> 1, k & 1 == 0);
+        let mut p: Plane = [Wide::ZERO; 4];
+        p[axis] = if neg { one.neg() } else { one };
+        p[3] = match o.get(axis) {
+            Some(&o) => Wide::new(if neg { g + o } else { g - o }, 0),
+            None => Wide::new(3, 23),
+        };
+        n = cut(poly, n, &p, e, true);
         if n < 3 {
             return 0;
         }
