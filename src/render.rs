@@ -219,12 +219,14 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             let end = tris.as_ptr_range().end;
             let mut at = tris.as_ptr();
             // Where the scan is assembly (`None` elsewhere: the loop below).
-            // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
-            // triangle before `end`); the mesh is validated, so every index
-            // is below the cache's length, `n`.
-            // Whether an entry may have the rare path's flag.
+            // Whether an entry may have the rare path's flag: not in a
+            // contained draw, whose every vertex the lean path keeps.
             let rare = !frame.stage.rows.contained();
             debug_assert!(rare || cache.iter().all(|v| v.rare_bits() == 0));
+            // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
+            // triangle before `end`); the mesh is validated, so every index
+            // is below the cache's length, `n`; without `rare`, no entry has
+            // the flag (above).
             while let Some((next, found)) = unsafe {
                 platform::skip_culled(at, end, cache.as_ptr().cast(), frame.options.cull, rare)
             } {
