@@ -922,8 +922,8 @@ pub(crate) const BOX_IN_SCAN: bool = cfg!(fixshade_thumb2);
 /// `None` elsewhere: the caller's Rust tests each triangle. Without
 /// `rare` (a draw whose every vertex the lean path keeps: the mesh's box
 /// is contained, `src/vertex.rs`), the flags are not read: a loop of its
-/// own, seven instructions a triangle shorter on ARMv7-M, eight on
-/// ARMv6-M.
+/// own, seven instructions a triangle shorter on ARMv7-M, ten on ARMv6-M
+/// (where it also loads by register offset, with no addresses made).
 ///
 /// # Safety
 /// `tris ..= end` is one slice's range; every index in it is below the

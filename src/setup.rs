@@ -100,8 +100,8 @@ pub(crate) enum SetUp<'s, 'r, const N: usize> {
 pub(crate) const SMALL: i32 = 4;
 
 /// Sets up triangle `v` of doubled area `area` (not 0), whose samples on
-/// `rect` are `s` ([`samples`]: found by the caller, which tests them
-/// first), into `slot`: its walk or, for a triangle of at most [`SMALL`]
+/// `rect` are `s` ([`Samples::of_box`]: found by the caller, which tests
+/// them first), into `slot`: its walk or, for a triangle of at most [`SMALL`]
 /// rows and columns of samples where the core divides in software, every
 /// row's span into `table`, each sample tested against the edge functions
 /// ([`EdgeFunctions`]) instead of walking the edges (three quotients and

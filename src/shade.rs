@@ -15,9 +15,8 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::face_normal;
-use crate::num::widening::mul_u32;
+use crate::num::division::floor_third;
 use crate::options::{DrawStats, RenderOptions, ShadingKind, ShadingMode};
-use crate::platform;
 use crate::setup::{self, Rect, Samples, SetUp, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
@@ -138,7 +137,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         a[0] = z;
                         Vtx { x, y, a }
                     });
-                    if let Some((a, s)) = cut(&v, rect) {
+                    if let Some((a, s)) = area_and_samples(&v, rect) {
                         self.gouraud_draw(&v, a, &s, rect, out, depth, stats)?;
                     }
                 }
@@ -151,7 +150,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         let (x, y, z) = corner(k);
                         Vtx { x, y, a: [z] }
                     });
-                    if let Some((a, s)) = cut(&v, rect) {
+                    if let Some((a, s)) = area_and_samples(&v, rect) {
                         self.draw(&v, a, &s, rect, out, depth, stats, &sh)?;
                     }
                 }
@@ -173,7 +172,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                         a[0] = z;
                         Vtx { x, y, a }
                     });
-                    if let Some((a, s)) = cut(&v, rect) {
+                    if let Some((a, s)) = area_and_samples(&v, rect) {
                         self.draw(&v, a, &s, rect, out, depth, stats, &sh)?;
                     }
                 }
@@ -352,7 +351,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
 
 /// A piece's doubled area and its samples on `rect`, if it has an area
 /// and a row of samples there.
-fn cut<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<(i32, Samples)> {
+fn area_and_samples<const N: usize>(v: &[Vtx<N>; 3], rect: &Rect) -> Option<(i32, Samples)> {
     let a = setup::area(v);
     if a == 0 {
         return None;
@@ -402,68 +401,16 @@ fn centroid(e: [Vec3; 3]) -> Vec3 {
     Vec3::from_bits(c[0], c[1], c[2])
 }
 
-/// `⌊b/3⌋` without a division: for `u < 2³²`, `⌊u/3⌋ = ⌊u·(2³³ + 1)/3 /
-/// 2³³⌋` (`0xAAAA_AAAB = (2³³ + 1)/3`; the excess `u/(3·2³³)` stays below
-/// the gap to the next third), or where a 64-bit product is made from
-/// 16-bit ones, [`third_by_shifts`]; for `b < 0`, `⌊b/3⌋ = −1 − ⌊(−1 −
-/// b)/3⌋`, `−1 − x` being `!x`.
-#[inline(always)]
-fn floor_third(b: i32) -> i32 {
-    let m = b >> 31;
-    let u = (b ^ m) as u32;
-    let q = if platform::SOFT_MUL64 {
-        third_by_shifts(u)
-    } else {
-        (mul_u32(u, 0xAAAA_AAAB) >> 33) as u32
-    };
-    (q as i32) ^ m
-}
-
-/// `⌊u/3⌋` by shifts and adds: `q ≈ u·(1/4 + 1/16 + …)` (`1/3` in binary,
-/// `0.0101…`), below `u/3` by at most 5, then the remainder `u − 3q ≤
-/// 15`'s third, `⌊11r/32⌋` (Warren, *Hacker's Delight*, `divu3`).
-#[inline(always)]
-fn third_by_shifts(u: u32) -> u32 {
-    let mut q = (u >> 2) + (u >> 4);
-    q += q >> 4;
-    q += q >> 8;
-    q += q >> 16;
-    let r = u - 3 * q;
-    q + ((11 * r) >> 5)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::tests::xorshift;
 
-    /// A third without a division is the floor division, at `i32`'s ends
-    /// and between; the centroid is the sums' third rounded half up.
+    /// The centroid is the sums' third rounded half up, with coordinates
+    /// at `i32`'s ends and between.
     #[test]
-    fn thirds_are_the_division() {
+    fn centroid_is_the_rounded_third() {
         let mut next = xorshift(0x1319_8a2e_0370_7344);
-        let ends = [
-            0,
-            1,
-            2,
-            3,
-            -1,
-            -2,
-            -3,
-            -4,
-            i32::MAX,
-            i32::MIN,
-            i32::MAX - 1,
-            i32::MIN + 1,
-        ];
-        for b in ends
-            .into_iter()
-            .chain((0..200_000).map(|_| next() as i32 >> (next() % 32)))
-        {
-            assert_eq!(floor_third(b) as i64, (b as i64).div_euclid(3), "{b}");
-            let u = b as u32;
-            assert_eq!(third_by_shifts(u), u / 3, "{u}");
-        }
         for i in 0..100_000 {
             let mut r = || {
                 let v = next() as i32 >> (next() % 32);

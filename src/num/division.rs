@@ -8,11 +8,17 @@
 //! - [`Divisor`]: several exact floors by one 32-bit divisor (an edge's
 //!   quotients): the hardware division where the core has one, else the
 //!   reciprocal corrected by the remainders.
+//! - [`div_rem_u64`]: a 64-bit quotient and remainder (the rare path's,
+//!   once a draw's): the core's division on a 64-bit core, else from
+//!   32-bit divisions.
+//! - [`floor_third`]: `⌊b/3⌋` by a multiply or by shifts (the flat
+//!   shader's centroid).
 //!
 //! A 64-bit division is one instruction on a 64-bit core and a library call
 //! on a 32-bit one: about 330 instructions on a Cortex-M0 and 180 on a
-//! Cortex-M4 (which divides only 32-bit numbers in hardware); a 32-bit one
-//! is a library call on the Cortex-M0. [`recip_fast`] makes a reciprocal
+//! Cortex-M4 (which divides only 32-bit numbers in hardware), and about a
+//! kilobyte of flash, which [`div_rem_u64`] spares; a 32-bit one is a
+//! library call on the Cortex-M0. [`recip_fast`] makes a reciprocal
 //! from a table and one Newton step, with 32 × 32 → 64-bit products only;
 //! [`Divisor`] shares one among several exact floors, corrected by their
 //! remainders. The values are the same on every target (unit tests hold
@@ -60,9 +66,10 @@ impl DivInt for i64 {
     /// [`div_rem_u64`] of the magnitude, signed again.
     #[inline(always)]
     fn quot(self, b: i64) -> i64 {
+        // Wrapping: `i64::MIN / 1`'s magnitude is 2⁶³.
         let q = div_rem_u64(self.unsigned_abs(), b as u64).0 as i64;
         if self < 0 {
-            -q
+            q.wrapping_neg()
         } else {
             q
         }
@@ -155,7 +162,8 @@ fn div_rem_digits(u1: u32, u0: u32, v: u32) -> (u32, u32) {
 }
 
 /// ⌊a / b⌋ for `b > 0` and `a − b` within the type, in `i32` or `i64`:
-/// [`floor_div_shifted`] where a 64-bit multiply is a library call, else
+/// [`floor_div_shifted`] where the type says so ([`DivInt::SHIFTED`]: a
+/// 64-bit multiply or, for `i64`, a 64-bit division not the core's), else
 /// [`floor_div_rem`] (the same value).
 #[inline]
 pub(crate) fn floor_div<T: DivInt>(a: T, b: T) -> T {
@@ -300,6 +308,36 @@ fn quotient_u32_by_reciprocal(n: u32, d: u32) -> u32 {
     q
 }
 
+/// `⌊b/3⌋` without a division: for `u < 2³²`, `⌊u/3⌋ = ⌊u·(2³³ + 1)/3 /
+/// 2³³⌋` (`0xAAAA_AAAB = (2³³ + 1)/3`; the excess `u/(3·2³³)` stays below
+/// the gap to the next third), or where a 64-bit product is made from
+/// 16-bit ones, [`third_by_shifts`]; for `b < 0`, `⌊b/3⌋ = −1 − ⌊(−1 −
+/// b)/3⌋`, `−1 − x` being `!x`.
+#[inline(always)]
+pub(crate) fn floor_third(b: i32) -> i32 {
+    let m = b >> 31;
+    let u = (b ^ m) as u32;
+    let q = if platform::SOFT_MUL64 {
+        third_by_shifts(u)
+    } else {
+        (mul_u32(u, 0xAAAA_AAAB) >> 33) as u32
+    };
+    (q as i32) ^ m
+}
+
+/// `⌊u/3⌋` by shifts and adds: `q ≈ u·(1/4 + 1/16 + …)` (`1/3` in binary,
+/// `0.0101…`), below `u/3` by at most 5, then the remainder `u − 3q ≤
+/// 15`'s third, `⌊11r/32⌋` (Warren, *Hacker's Delight*, `divu3`).
+#[inline(always)]
+fn third_by_shifts(u: u32) -> u32 {
+    let mut q = (u >> 2) + (u >> 4);
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    let r = u - 3 * q;
+    q + ((11 * r) >> 5)
+}
+
 /// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁵` (`k = 0..=64`), floored; the
 /// first (2³²) capped to `u32::MAX`. 260 bytes, computed by the compiler.
 const RECIP_NODES: [u32; 65] = {
@@ -355,7 +393,10 @@ fn chord(d: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::{div_rem_u64_by_digits, floor_div_rem, floor_div_shifted, recip_fast, Divisor};
+    use super::{
+        div_rem_u64_by_digits, floor_div_rem, floor_div_shifted, floor_third, recip_fast,
+        third_by_shifts, Divisor,
+    };
     use crate::tests::xorshift;
 
     /// The 32-bit cores' 64-bit division is the division: divisors of
@@ -382,6 +423,35 @@ mod tests {
             }
         }
         assert!(count > 150_000, "{count}");
+    }
+
+    /// A third without a division is the floor division, at `i32`'s ends
+    /// and between; the shifts' form (the M0+'s) over every magnitude.
+    #[test]
+    fn thirds_are_the_division() {
+        let mut next = xorshift(0x1319_8a2e_0370_7344);
+        let ends = [
+            0,
+            1,
+            2,
+            3,
+            -1,
+            -2,
+            -3,
+            -4,
+            i32::MAX,
+            i32::MIN,
+            i32::MAX - 1,
+            i32::MIN + 1,
+        ];
+        for b in ends
+            .into_iter()
+            .chain((0..200_000).map(|_| next() as i32 >> (next() % 32)))
+        {
+            assert_eq!(floor_third(b) as i64, (b as i64).div_euclid(3), "{b}");
+            let u = b as u32;
+            assert_eq!(third_by_shifts(u), u / 3, "{u}");
+        }
     }
 
     /// The floor division of the Cortex-M0 (no remainder) is the one that
