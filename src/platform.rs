@@ -764,6 +764,518 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     run.covered - run.failed
 }
 
+/// Whether a kept Gouraud triangle (colour and depth, four attributes) is
+/// set up by [`gouraud_set_up`]'s one routine of assembly instead of the
+/// set-up's stages in Rust: on ARMv7-M, where the Rust stages hand the
+/// triangle from one to the next through memory (its corners, its
+/// walk, its planes; some 350 instructions a triangle of S1 on the M4F).
+pub(crate) const GOURAUD_SET_UP: bool = cfg!(fixshade_thumb2);
+
+/// What [`gouraud_set_up`] reads and writes: a kept triangle's three
+/// vertex-cache entries (16 bytes each: `x` and `y` as `i16` in the first
+/// word, the depth attribute in the second, the lit colour's three 17-bit
+/// channels from bit 0 of the third word), its doubled area, its rows of
+/// samples, and where the planes and the rows' spans go. `repr(C)`: the
+/// assembly reads it at these offsets (0, 12, 16, 20, 24, 28, 32).
+#[repr(C)]
+pub(crate) struct GouraudSetUp {
+    pub(crate) entries: [*const u32; 3],
+    pub(crate) area: i32,
+    pub(crate) first_row: i32,
+    pub(crate) last_row: i32,
+    /// The reciprocals' table of `num::division::recip_fast`.
+    pub(crate) nodes: *const u32,
+    pub(crate) planes: *mut Planes<4>,
+    pub(crate) table: *mut Row,
+}
+
+/// ARMv7-M, [`gouraud_set_up`]: the edge from the packed position in r1
+/// down to the one in r2 at sample row r0 (`walk::Edge::new` with a
+/// hardware division: `q = ⌈⌈n/16⌉/dy⌉`, `step = ⌈dx/dy⌉`, each ceiling
+/// `−⌊−x/dy⌋` from the truncating `sdiv` and its remainder's sign), its
+/// five words (`q`, `rem`, `d`, `step`, `rstep`) stored at r3. Keeps r0–r3
+/// and r7.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_edge {
+    () => {
+        concat!(
+            "sxth r4, r1\n",
+            "asr r5, r1, #16\n",
+            "sxth r6, r2\n",
+            "asr r8, r2, #16\n",
+            "sub r6, r6, r4\n",
+            "sub r8, r8, r5\n",
+            "sub r9, r4, #8\n",
+            "mul r9, r9, r8\n",
+            "sub r10, r0, r5\n",
+            "mla r9, r6, r10, r9\n",
+            "add r10, r9, #15\n",
+            "asr r10, r10, #4\n",
+            "rsb r10, r10, #0\n",
+            "sdiv r4, r10, r8\n",
+            "mls r10, r4, r8, r10\n",
+            "rsb r4, r4, r10, lsr #31\n",
+            "rsb r10, r6, #0\n",
+            "sdiv r11, r10, r8\n",
+            "mls r10, r11, r8, r10\n",
+            "rsb r11, r11, r10, lsr #31\n",
+            "lsl r10, r8, #4\n",
+            "mul r5, r4, r10\n",
+            "sub r5, r5, r9\n",
+            "mul r12, r11, r8\n",
+            "sub r12, r12, r6\n",
+            "lsl r12, r12, #4\n",
+            "stm r3, {{r4, r5, r10, r11, r12}}\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`gouraud_set_up`]: one barycentric gradient `Λ` from the
+/// side in `$s` (signed by the area) and the reciprocal in r4, into `$s`:
+/// `shr_to_i32(s·r, 31 − n)` with `31 − n` in r3 and `n + 1` in r2; to
+/// label 90 where it does not fit `i32`.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_lambda {
+    ($s:literal) => {
+        concat!(
+            "umull r0, r1, ",
+            $s,
+            ", r4\n",
+            "asr r8, ",
+            $s,
+            ", #31\n",
+            "mla r1, r8, r4, r1\n",
+            "lsr r8, r0, r3\n",
+            "lsl r9, r1, r2\n",
+            "orr ",
+            $s,
+            ", r8, r9\n",
+            "asr r8, r1, r3\n",
+            "cmp r8, ",
+            $s,
+            ", asr #31\n",
+            "bne 90f\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`gouraud_set_up`]: attribute `k`'s plane from its value at
+/// vertex 0 (r0) and its differences at vertices 1 and 2 (r1, r2), with
+/// the `Λ` in r12, r11 (vertex 1's x and y) and r6, r5 (vertex 2's): the
+/// gradients `⌊(d₁Λ₁ + d₂Λ₂ + 2²³)/2²⁴⌋` (to label 90 where one does not
+/// fit `i32`), and the plane at column 0 of the first row, `16·a₀ +
+/// ⌊(gx·X + gy·Y + 8)/16⌋` with `X = 8 − x₀`, `Y = 8 − y₀ + 16·r_top` at
+/// sp + 32 (the set-up's `a₀·16 + offset − gx·c₀ + gy·(r_top − r₀)` in
+/// one floor: the integer terms come out of it). Stored at the planes'
+/// `at`, `gx`, `gy` offsets given.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_attribute {
+    ($at:literal, $gx:literal, $gy:literal) => {
+        concat!(
+            "smull r3, r4, r1, r12\n",
+            "smlal r3, r4, r2, r6\n",
+            "adds r3, r3, #0x800000\n",
+            "adc r4, r4, #0\n",
+            "lsr r3, r3, #24\n",
+            "orr r8, r3, r4, lsl #8\n",
+            "asr r3, r4, #24\n",
+            "cmp r3, r8, asr #31\n",
+            "bne 90f\n",
+            "smull r3, r4, r1, r11\n",
+            "smlal r3, r4, r2, r5\n",
+            "adds r3, r3, #0x800000\n",
+            "adc r4, r4, #0\n",
+            "lsr r3, r3, #24\n",
+            "orr r9, r3, r4, lsl #8\n",
+            "asr r3, r4, #24\n",
+            "cmp r3, r9, asr #31\n",
+            "bne 90f\n",
+            "ldrd r1, r2, [sp, #32]\n",
+            "smull r3, r4, r8, r1\n",
+            "smlal r3, r4, r9, r2\n",
+            "adds r3, r3, #8\n",
+            "adc r4, r4, #0\n",
+            "lsr r3, r3, #4\n",
+            "orr r3, r3, r4, lsl #28\n",
+            "add r3, r3, r0, lsl #4\n",
+            "ldr r4, [r7, #28]\n",
+            "str r3, [r4, #",
+            $at,
+            "]\n",
+            "str r8, [r4, #",
+            $gx,
+            "]\n",
+            "str r9, [r4, #",
+            $gy,
+            "]\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`gouraud_set_up`]: a colour channel's values at the three
+/// vertices from their 17 bits in r0–r2, as the set-up's attributes
+/// `v·m + 2¹⁵` (`m` = 31 for red and blue, 63 for green: `$sh` 5 or 6):
+/// r0 vertex 0's, r1 and r2 the differences from it (the ½ cancels).
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_channel {
+    ($sh:literal) => {
+        concat!(
+            "sub r1, r1, r0\n",
+            "sub r2, r2, r0\n",
+            "rsb r1, r1, r1, lsl #",
+            $sh,
+            "\n",
+            "rsb r2, r2, r2, lsl #",
+            $sh,
+            "\n",
+            "rsb r0, r0, r0, lsl #",
+            $sh,
+            "\n",
+            "add r0, r0, #32768\n",
+        )
+    };
+}
+
+/// Sets up a kept Gouraud triangle in one routine: its rows' spans into
+/// `args.table` and, unless no row covers a sample, its four planes (the
+/// depth, then red, green and blue) into `args.planes`, the values of
+/// `setup::set_up` and `setup::planes` for its `Vtx<4>` corners (each
+/// corner's depth attribute and lit colour as `shade.rs`'s Gouraud
+/// attributes, `v·m + 2¹⁵`). Returns the rows written (`last_row −
+/// first_row + 1`), 0 where none covers a sample (no planes), and `None`
+/// where the Rust set-up is to take the triangle: more than 32 rows, or a
+/// plane too steep for the 32-bit gradients (the exact quotients'). The
+/// caller has ruled out rows whose spans need a clamp.
+///
+/// On ARMv7-M one block of assembly, the triangle's values in registers
+/// from stage to stage: the corners sorted, the walk's edges by `sdiv`
+/// (each of five words, the two or three of a triangle in a scratch of 72
+/// bytes on the stack), 14 instructions a row, the reciprocal and the four
+/// `Λ`, 31 instructions an attribute's plane. `r6` and `r7`, which `asm!`
+/// may not name, are pushed and popped; sp is restored. Elsewhere `None`:
+/// [`GOURAUD_SET_UP`] is false there and the caller does not ask.
+///
+/// # Safety
+/// The entries are readable 16-byte cache entries whose colour word holds
+/// a lit colour; `nodes` is that table; `planes` is valid for writes of a
+/// `Planes<4>` and `table` for 32 rows.
+#[inline(always)]
+pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
+    #[cfg(fixshade_thumb2)]
+    {
+        let n: i32;
+        // SAFETY: the caller's contract; the scratch is below sp, which is
+        // restored before the block ends.
+        unsafe {
+            core::arch::asm!(
+                "push {{r6, r7}}",
+                "sub sp, #72",
+                "mov r7, r0",
+                // Rows: at most 32.
+                "ldrd r0, r1, [r7, #16]",
+                "sub r1, r1, r0",
+                "cmp r1, #31",
+                "bhi 90f",
+                // The corners sorted by y: t r3, m r4, b r5; their y in
+                // r8, r9, r10.
+                "ldm r7, {{r8, r9, r10}}",
+                "ldr r3, [r8]",
+                "ldr r4, [r9]",
+                "ldr r5, [r10]",
+                "asr r8, r3, #16",
+                "asr r9, r4, #16",
+                "cmp r9, r8",
+                "bge 1f",
+                "mov r12, r3",
+                "mov r3, r4",
+                "mov r4, r12",
+                "mov r12, r8",
+                "mov r8, r9",
+                "mov r9, r12",
+                "1:",
+                "asr r10, r5, #16",
+                "cmp r10, r9",
+                "bge 2f",
+                "mov r12, r4",
+                "mov r4, r5",
+                "mov r5, r12",
+                "mov r12, r9",
+                "mov r9, r10",
+                "mov r10, r12",
+                "cmp r9, r8",
+                "bge 2f",
+                "mov r12, r3",
+                "mov r3, r4",
+                "mov r4, r12",
+                "mov r12, r8",
+                "mov r8, r9",
+                "mov r9, r12",
+                "2:",
+                "str r3, [sp, #12]",
+                "strd r4, r5, [sp, #4]",
+                // The middle vertex's side of the long edge: the cross
+                // product at sp.
+                "sxth r11, r3",
+                "sxth r12, r4",
+                "sxth lr, r5",
+                "sub r1, lr, r11",
+                "sub r2, r9, r8",
+                "mul r1, r1, r2",
+                "sub r2, r10, r8",
+                "sub r6, r12, r11",
+                "mls r1, r2, r6, r1",
+                "str r1, [sp, #0]",
+                // The first sample row, and the long edge t → b at sp + 16.
+                "lsl r0, r0, #4",
+                "add r0, r0, #8",
+                "ldr r1, [sp, #12]",
+                "ldr r2, [sp, #8]",
+                "add r3, sp, #16",
+                thumb2_edge!(),
+                // The short edge at sp + 36: t → m where m lies below the
+                // first sample row (then the switch to m → b at the row
+                // of m), else m → b (no switch).
+                "ldr r1, [sp, #4]",
+                "asr r2, r1, #16",
+                "cmp r2, r0",
+                "ble 3f",
+                "add r2, r2, #7",
+                "asr r2, r2, #4",
+                "str r2, [sp, #56]",
+                "mov r2, r1",
+                "ldr r1, [sp, #12]",
+                "add r3, sp, #36",
+                thumb2_edge!(),
+                "b 4f",
+                "3:",
+                "mvn r2, #0x80000000",
+                "str r2, [sp, #56]",
+                "ldr r2, [sp, #8]",
+                "add r3, sp, #36",
+                thumb2_edge!(),
+                "4:",
+                // Left edge into r0–r4, right into r5, r6, r8–r10: the
+                // long one on the left where the cross product is negative.
+                "ldr r1, [sp, #0]",
+                "add r11, sp, #36",
+                "add r3, sp, #16",
+                "cmp r1, #0",
+                "itt lt",
+                "addlt r11, sp, #16",
+                "addlt r3, sp, #36",
+                "ldm r3, {{r5, r6, r8, r9, r10}}",
+                "ldm r11, {{r0, r1, r2, r3, r4}}",
+                // The rows up to the switch or the last: r11 the next
+                // row's span, r12 their end.
+                "ldr lr, [r7, #20]",
+                "add lr, lr, #1",
+                "ldr r12, [sp, #56]",
+                "cmp r12, lr",
+                "it lt",
+                "movlt lr, r12",
+                "ldr r12, [r7, #16]",
+                "sub lr, lr, r12",
+                "ldr r11, [r7, #32]",
+                "add r12, r11, lr, lsl #3",
+                "5:",
+                "sub lr, r5, r0",
+                "strd r0, lr, [r11], #8",
+                "add r0, r0, r3",
+                "add r1, r1, r4",
+                "cmp r1, r2",
+                "itt ge",
+                "subge r1, r1, r2",
+                "subge r0, r0, #1",
+                "add r5, r5, r9",
+                "add r6, r6, r10",
+                "cmp r6, r8",
+                "itt ge",
+                "subge r6, r6, r8",
+                "subge r5, r5, #1",
+                "cmp r11, r12",
+                "bne 5b",
+                // All rows done? r12 the table's end.
+                "ldrd r12, lr, [r7, #16]",
+                "sub lr, lr, r12",
+                "ldr r12, [r7, #32]",
+                "add r12, r12, lr, lsl #3",
+                "add r12, r12, #8",
+                "cmp r11, r12",
+                "beq 6f",
+                // The lower short edge m → b from the switch's row, in
+                // place of the right edge (long on the left) or the left.
+                "add lr, sp, #16",
+                "stm lr, {{r0, r1, r2, r3, r4}}",
+                "add lr, sp, #36",
+                "stm lr, {{r5, r6, r8, r9, r10}}",
+                "strd r11, r12, [sp, #60]",
+                "ldr r1, [sp, #56]",
+                "lsl r0, r1, #4",
+                "add r0, r0, #8",
+                "ldr r2, [sp, #0]",
+                "add r3, sp, #16",
+                "cmp r2, #0",
+                "it lt",
+                "addlt r3, sp, #36",
+                "ldrd r1, r2, [sp, #4]",
+                thumb2_edge!(),
+                "add lr, sp, #36",
+                "ldm lr, {{r5, r6, r8, r9, r10}}",
+                "add lr, sp, #16",
+                "ldm lr, {{r0, r1, r2, r3, r4}}",
+                "ldrd r11, r12, [sp, #60]",
+                "b 5b",
+                // Any span with a pixel? Else 0: no planes.
+                "6:",
+                "ldr r11, [r7, #32]",
+                "7:",
+                "ldr r1, [r11, #4]",
+                "cmp r1, #0",
+                "bgt 8f",
+                "add r11, r11, #8",
+                "cmp r11, r12",
+                "bne 7b",
+                "movs r0, #0",
+                "b 99f",
+                // The planes: the corners in their own order.
+                "8:",
+                "ldm r7, {{r8, r9, r10}}",
+                "ldr r0, [r8]",
+                "ldr r1, [r9]",
+                "ldr r2, [r10]",
+                "sxth r3, r0",
+                "asr r4, r0, #16",
+                "sxth r5, r1",
+                "sub r5, r5, r3",
+                "asr r6, r1, #16",
+                "sub r6, r6, r4",
+                "sxth r11, r2",
+                "sub r11, r11, r3",
+                "asr r12, r2, #16",
+                "sub r12, r12, r4",
+                // X = 8 − x₀ and Y = 8 − y₀ + 16·r_top at sp + 32.
+                "rsb r0, r3, #8",
+                "ldr r1, [r7, #16]",
+                "rsb r2, r4, #8",
+                "add r1, r2, r1, lsl #4",
+                "strd r0, r1, [sp, #32]",
+                // The reciprocal of |area|·2ⁿ (`recip_fast`) into r4.
+                "ldr r0, [r7, #12]",
+                "eor r1, r0, r0, asr #31",
+                "sub r1, r1, r0, asr #31",
+                "clz r2, r1",
+                "lsl r1, r1, r2",
+                "sub r3, r1, #0x80000000",
+                "lsr r4, r3, #25",
+                "ubfx r8, r3, #9, #16",
+                "ldr r9, [r7, #24]",
+                "add r9, r9, r4, lsl #2",
+                "ldrd r4, r9, [r9]",
+                "sub r9, r4, r9",
+                "lsr r9, r9, #10",
+                "mul r9, r9, r8",
+                "sub r4, r4, r9, lsr #6",
+                "umull r8, r9, r1, r4",
+                "rsbs r9, r9, #0x80000000",
+                "bmi 11f",
+                "umull r8, r3, r4, r9",
+                "adds r4, r4, r3, lsl #1",
+                "it cs",
+                "mvncs r4, #0",
+                "b 12f",
+                "11:",
+                "rsb r9, r9, #0",
+                "umull r8, r3, r4, r9",
+                "sub r4, r4, r3, lsl #1",
+                "12:",
+                // The sides, signed by the area: dy₂, −dx₂, −dy₁, dx₁ in
+                // r12, r11, r6, r5 (each negated for a negative area);
+                // then their Λ in place.
+                "cmp r0, #0",
+                "ittee lt",
+                "rsblt r12, r12, #0",
+                "rsblt r5, r5, #0",
+                "rsbge r11, r11, #0",
+                "rsbge r6, r6, #0",
+                "rsb r3, r2, #31",
+                "add r2, r2, #1",
+                thumb2_lambda!("r12"),
+                thumb2_lambda!("r11"),
+                thumb2_lambda!("r6"),
+                thumb2_lambda!("r5"),
+                // Depth.
+                "ldm r7, {{r8, r9, r10}}",
+                "ldr r0, [r8, #4]",
+                "ldr r1, [r9, #4]",
+                "ldr r2, [r10, #4]",
+                "sub r1, r1, r0",
+                "sub r2, r2, r0",
+                thumb2_attribute!("0", "16", "32"),
+                // Red: bits 0–16 of the colour.
+                "ldm r7, {{r8, r9, r10}}",
+                "ldr r0, [r8, #8]",
+                "ldr r1, [r9, #8]",
+                "ldr r2, [r10, #8]",
+                "ubfx r0, r0, #0, #17",
+                "ubfx r1, r1, #0, #17",
+                "ubfx r2, r2, #0, #17",
+                thumb2_channel!("5"),
+                thumb2_attribute!("4", "20", "36"),
+                // Green: bits 17–33.
+                "ldm r7, {{r8, r9, r10}}",
+                "ldrd r0, r3, [r8, #8]",
+                "lsr r0, r0, #17",
+                "bfi r0, r3, #15, #2",
+                "ldrd r1, r3, [r9, #8]",
+                "lsr r1, r1, #17",
+                "bfi r1, r3, #15, #2",
+                "ldrd r2, r3, [r10, #8]",
+                "lsr r2, r2, #17",
+                "bfi r2, r3, #15, #2",
+                thumb2_channel!("6"),
+                thumb2_attribute!("8", "24", "40"),
+                // Blue: bits 34–50.
+                "ldm r7, {{r8, r9, r10}}",
+                "ldr r0, [r8, #12]",
+                "ldr r1, [r9, #12]",
+                "ldr r2, [r10, #12]",
+                "ubfx r0, r0, #2, #17",
+                "ubfx r1, r1, #2, #17",
+                "ubfx r2, r2, #2, #17",
+                thumb2_channel!("5"),
+                thumb2_attribute!("12", "28", "44"),
+                "ldrd r1, r2, [r7, #16]",
+                "sub r0, r2, r1",
+                "add r0, r0, #1",
+                "b 99f",
+                "90:",
+                "mvn r0, #0",
+                "99:",
+                "add sp, #72",
+                "pop {{r6, r7}}",
+                inout("r0") args as *const GouraudSetUp => n,
+                out("r1") _,
+                out("r2") _,
+                out("r3") _,
+                out("r4") _,
+                out("r5") _,
+                out("r8") _,
+                out("r9") _,
+                out("r10") _,
+                out("r11") _,
+                out("r12") _,
+                out("lr") _,
+            );
+        }
+        usize::try_from(n).ok()
+    }
+    #[cfg(not(fixshade_thumb2))]
+    {
+        let _ = args;
+        None
+    }
+}
+
 /// Where a vertex cache entry keeps its flags word ([`skip_culled`]: the
 /// word at this byte offset, the rare path's flag at bit [`RARE_BIT`]).
 #[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]

@@ -15,13 +15,18 @@ use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::face_normal;
-use crate::num::division::floor_third;
+use crate::num::division::{floor_third, recip_nodes};
 use crate::options::{DrawStats, RenderOptions, ShadingKind, ShadingMode};
+use crate::planes::{Planes, Row};
+use crate::platform;
 use crate::setup::{self, Rect, Samples, SetUp, Vtx};
 use crate::span::{self, Out, Shader};
 use crate::vector::{Unit3, Vec3};
 use crate::vertex::{CachedVertex, Stage};
 use crate::walk::CHUNK;
+
+// The platform's Gouraud set-up writes at most 32 rows.
+const _: () = assert!(CHUNK == 32);
 
 /// One draw's constants and what it draws into: the vertex stage, the
 /// switches, the pixels drawn.
@@ -88,6 +93,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         match M::KIND {
             ShadingKind::Gouraud => {
+                if platform::GOURAUD_SET_UP && !back && !s.clamp {
+                    if let Some(res) = self.gouraud_in_one(c, area, s, out, depth, stats) {
+                        return res;
+                    }
+                }
                 let a = self.gouraud(c, back, stats);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
                 self.gouraud_draw(&v, area, s, rect, out, depth, stats)
@@ -193,6 +203,68 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         };
         let [s0, s1, s2] = self.shades(c, back, stats);
         [a(s0), a(s1), a(s2)]
+    }
+
+    /// Sets up and draws front-lit Gouraud triangle `c` (doubled area
+    /// `area`, samples `s`, no span that needs a clamp) with the platform's
+    /// one-routine set-up ([`platform::gouraud_set_up`]), its corners lit
+    /// first; `None` where that leaves it to the set-up in Rust (a corner
+    /// whose entry keeps the back face's colour, more rows than a table,
+    /// a steep plane), which then finds the same spans and planes.
+    /// Out of line, as [`Frame::draw`] is: the row loop gets the registers.
+    #[inline(never)]
+    fn gouraud_in_one<O: Out, D: DepthTest>(
+        &self,
+        c: &mut Corners,
+        area: i32,
+        s: &Samples,
+        out: &mut O,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Option<Result<(), O::Error>> {
+        let mut entries = [core::ptr::null(); 3];
+        for (k, e) in entries.iter_mut().enumerate() {
+            let v = c.cache.get_mut(c.slot[k])?;
+            if !self.stage.lit_front(v, c.vertex[k], stats) {
+                return None;
+            }
+            *e = (v as *const CachedVertex).cast::<u32>();
+        }
+        let mut planes = MaybeUninit::<Planes<4>>::uninit();
+        let mut table = [MaybeUninit::<Row>::uninit(); CHUNK];
+        let args = platform::GouraudSetUp {
+            entries,
+            area,
+            first_row: s.rows.0,
+            last_row: s.rows.1,
+            nodes: recip_nodes(),
+            planes: planes.as_mut_ptr(),
+            table: table.as_mut_ptr().cast::<Row>(),
+        };
+        // SAFETY: three cache entries lit for the front face, the
+        // reciprocals' table, a slot for the planes and a table of CHUNK
+        // (32) rows.
+        let n = unsafe { platform::gouraud_set_up(&args) }?;
+        stats.drawn = stats.drawn.saturating_add(1);
+        if n == 0 {
+            return Some(Ok(()));
+        }
+        // SAFETY: the routine wrote the planes and the first `n` rows.
+        let (planes, rows) = unsafe {
+            (
+                planes.assume_init_ref(),
+                core::slice::from_raw_parts(table.as_ptr().cast::<Row>(), n),
+            )
+        };
+        let sh = span::Gouraud {
+            dither: self.options.dither,
+        };
+        let rect = &self.rect;
+        let res = out.rows(depth, rows, (s.rows.0, 0), (rect.c0, rect.c1), planes, &sh);
+        if let Ok(w) = res {
+            stats.pixels = stats.pixels.saturating_add(w);
+        }
+        Some(res.map(|_| ()))
     }
 
     /// Sets up and draws Gouraud triangle `v`, dithered or not.

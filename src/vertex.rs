@@ -506,6 +506,10 @@ const _: () = assert!(core::mem::size_of::<CachedVertex>() == 16);
 const _: () = assert!(core::mem::offset_of!(CachedVertex, x) == 0);
 const _: () = assert!(core::mem::offset_of!(CachedVertex, y) == 2);
 const _: () = assert!(core::mem::offset_of!(CachedVertex, c) + 4 == platform::FLAGS_AT);
+// And the Gouraud set-up's (`platform::gouraud_set_up`): the depth
+// attribute the second word, the colour ([`pack`]) the third and fourth.
+const _: () = assert!(core::mem::offset_of!(CachedVertex, z) == 4);
+const _: () = assert!(core::mem::offset_of!(CachedVertex, c) == 8);
 const _: () = assert!(B_RARE == 1 << (32 + platform::RARE_BIT));
 
 impl CachedVertex {
@@ -788,6 +792,19 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
         } else {
             self.light(v, i, want, stats)
         }
+    }
+
+    /// Lights vertex `i` (its entry `v`) for the front face unless its
+    /// entry holds that colour already; whether it now does (an entry lit
+    /// first for the back face keeps the back's colour). For a reader of
+    /// the entry's colour bits ([`pack`]'s layout), not of a [`Shade`].
+    #[inline(always)]
+    pub(crate) fn lit_front(&self, v: &mut CachedVertex, i: usize, stats: &mut DrawStats) -> bool {
+        let front = (B_FRONT >> 32) as u32;
+        if v.c[1] & front == 0 {
+            self.light(v, i, B_FRONT, stats);
+        }
+        v.c[1] & front != 0
     }
 
     /// Lights `v` (mesh vertex `i`) for the facing `want`, keeping the

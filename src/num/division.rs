@@ -339,8 +339,10 @@ fn third_by_shifts(u: u32) -> u32 {
 }
 
 /// `2⁶³/d` at the nodes `d = 2³¹ + k·2²⁵` (`k = 0..=64`), floored; the
-/// first (2³²) capped to `u32::MAX`. 260 bytes, computed by the compiler.
-const RECIP_NODES: [u32; 65] = {
+/// first (2³²) capped to `u32::MAX`. 260 bytes, computed by the compiler;
+/// a `static`, so that the set-up's assembly reads the same table
+/// ([`recip_nodes`]).
+static RECIP_NODES: [u32; 65] = {
     let mut t = [0u32; 65];
     let mut k = 0;
     while k < 65 {
@@ -377,6 +379,13 @@ pub(crate) fn recip_fast(d: u32) -> u32 {
     } else {
         y.saturating_add(step)
     }
+}
+
+/// [`RECIP_NODES`] for code that reads it by address (the Gouraud set-up's
+/// assembly, `platform::gouraud_set_up`, which makes [`recip_fast`]'s
+/// value from it with the same steps).
+pub(crate) fn recip_nodes() -> *const u32 {
+    RECIP_NODES.as_ptr()
 }
 
 /// `2⁶³/d` from the chord between the two [`RECIP_NODES`] around `d ∈
