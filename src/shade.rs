@@ -65,15 +65,20 @@ pub(crate) fn rect_of(size: (u32, u32)) -> ((i32, i32), Rect) {
 }
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
-    /// Lights and draws triangle `c` as it is (the lean path): its
-    /// vertices' window positions and depths `p`, of doubled area `area`
-    /// (not 0), its samples on the frame's rectangle `s`.
+    /// Lights and draws triangle `c` as it is (the lean path): of doubled
+    /// area `area` (not 0), its samples on the frame's rectangle `s`, its
+    /// corners' window positions and depths `p` where the caller has read
+    /// them.
+    ///
+    /// # Safety
+    /// Every `c.slot[k] < c.cache.len()` (`Frame::triangle`'s contract):
+    /// the corners' positions are read without bounds checks.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn whole<M: ShadingMode, O: Out, D: DepthTest>(
+    pub(crate) unsafe fn whole<M: ShadingMode, O: Out, D: DepthTest>(
         &self,
         c: &mut Corners,
-        p: &[[i32; 3]; 3],
+        p: Option<[[i32; 3]; 3]>,
         area: i32,
         s: &Samples,
         out: &mut O,
@@ -82,6 +87,13 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ) -> Result<(), O::Error> {
         let back = area > 0 && self.options.two_sided;
         let rect = &self.rect;
+        // SAFETY: the contract above.
+        let corners = |c: &Corners| {
+            p.unwrap_or_else(|| {
+                c.slot
+                    .map(|k| unsafe { c.cache.get_unchecked(k) }.position())
+            })
+        };
         // Vertex k with attributes `a`, its depth first.
         fn vtx<const N: usize>(p: &[i32; 3], mut a: [i32; N]) -> Vtx<N> {
             a[0] = p[2];
@@ -99,17 +111,20 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                     }
                 }
                 let a = self.gouraud(c, back, stats);
+                let p = corners(c);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
                 self.gouraud_draw(&v, area, s, rect, out, depth, stats)
             }
             ShadingKind::Flat => {
                 let sh = self.flat(c, back, stats);
+                let p = corners(c);
                 let v = [vtx(&p[0], [0]), vtx(&p[1], [0]), vtx(&p[2], [0])];
                 self.draw(&v, area, s, rect, out, depth, stats, &sh)
             }
             ShadingKind::Phong => {
                 let (e, n) = self.phong_corners(c, back);
                 let (a, sh) = self.phong(e, n);
+                let p = corners(c);
                 let v = [vtx(&p[0], a[0]), vtx(&p[1], a[1]), vtx(&p[2], a[2])];
                 self.draw(&v, area, s, rect, out, depth, stats, &sh)
             }

@@ -86,18 +86,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
                 area
             }
         };
-        // The depths only for a triangle culling keeps.
-        let p = [v0.position(), v1.position(), v2.position()];
-        let (lo, hi) = match known {
+        // The positions and depths only where they are read: a triangle
+        // culling keeps, whose box the scan has not made or which has few
+        // samples (the lean Gouraud set-up reads its entries itself).
+        let corners = || [v0.position(), v1.position(), v2.position()];
+        let (lo, hi, p) = match known {
             // Each half of the packed corners, sign-extended.
             Some(f) if platform::BOX_IN_SCAN => {
                 let xy = |w: u32| ((w as i32) << 16 >> 16, w as i32 >> 16);
-                (xy(f.lo), xy(f.hi))
+                (xy(f.lo), xy(f.hi), None)
             }
             _ => {
+                let p = corners();
                 let lo = |k: usize| p[0][k].min(p[1][k]).min(p[2][k]);
                 let hi = |k: usize| p[0][k].max(p[1][k]).max(p[2][k]);
-                ((lo(0), lo(1)), (hi(0), hi(1)))
+                ((lo(0), lo(1)), (hi(0), hi(1)), Some(p))
             }
         };
         // The samples the box holds, if any: the cheap test that spares
@@ -110,7 +113,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         // A box of at most 2 × 2 pixel centres: the samples tested one by
         // one, and a triangle that covers none of them (most of a fine
         // mesh's far from the centre of the view) is neither lit nor set up.
-        if cols.1 - cols.0 <= 1 && rows.1 - rows.0 <= 1 && covers_none(&p, area, cols, rows) {
+        if cols.1 - cols.0 <= 1
+            && rows.1 - rows.0 <= 1
+            && covers_none(&p.unwrap_or_else(corners), area, cols, rows)
+        {
             return Ok(());
         }
         if snap_may_flip(area, (hi.0 - lo.0, hi.1 - lo.1)) && self.turned_over(vertex, area) {
@@ -121,7 +127,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             slot,
             vertex,
         };
-        self.whole::<M, O, D>(c, &p, area, &s, out, depth, stats)
+        // SAFETY: the caller's contract: every slot indexes the cache.
+        unsafe { self.whole::<M, O, D>(c, p, area, &s, out, depth, stats) }
     }
 
     /// Whether the unsnapped triangle faces otherwise than its snapped
