@@ -75,13 +75,21 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         } else {
             3
         }
-    } else if f.contains("setup::set_up") && c > 4 * d {
-        // The walk's rows, stepped inside the set-up: more often than a
-        // triangle's four attributes (depth and three colours).
+    } else if (f.contains("setup::set_up") || f.contains("::gouraud_in_one")) && c > 4 * d {
+        // The walk's rows, stepped inside the set-up (the M4F's in its
+        // one routine of assembly): more often than a triangle's four
+        // attributes (depth and three colours).
         4
-    } else if ["setup::", "walk::", "turned_over", "Rows::fine", "clip::"]
-        .iter()
-        .any(|k| f.contains(k))
+    } else if [
+        "setup::",
+        "walk::",
+        "turned_over",
+        "Rows::fine",
+        "clip::",
+        "::gouraud_in_one",
+    ]
+    .iter()
+    .any(|k| f.contains(k))
     {
         if draw {
             6
@@ -173,8 +181,9 @@ pub(super) fn stage_table(
          loop (`gouraud_depth_rows`) what ran once a pixel is per pixel, what ran more often \
          than twice a triangle set up per row ({rows4} rows: the most any instruction of the \
          row loop ran, short of the pixels), else the set-up's; in the set-up (`set_up`, \
-         which walks the rows of most triangles) what ran more often than four times a \
-         triangle set up (its attributes) per row; the edges' quotients found by steps \
+         which walks the rows of most triangles, and on the M4F `gouraud_in_one`, the \
+         Gouraud set-up in one routine of assembly with its call of the row loop) what ran \
+         more often than four times a triangle set up (its attributes) per row; the edges' quotients found by steps \
          (`walk::Edge::stepped`, out of line) are the set-up's; what ran fewer times than a \
          quarter of the triangles set up, anywhere, is the draw's own. The library routines' \
          calls are not followed to their callers.\n\n\
