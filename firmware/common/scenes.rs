@@ -1,8 +1,9 @@
 //! The scenes the firmware renders, shared by the device's code generator
 //! (`firmware/qemu/build.rs`) and the host's reference renderer
 //! (`firmware/host`): the standard scenes S1 to S4 at 320 × 240 in their own
-//! shading mode, each again in the two other shading modes, and S1's
-//! sphere seen from inside ([`inside`]).
+//! shading mode, each again in the two other shading modes, S1's
+//! sphere seen from inside ([`inside`]) and S1 without culling
+//! ([`unculled`]).
 
 use fixshade_host::scene_desc::{SceneDesc, Shading};
 use fixshade_host::standard_scenes;
@@ -57,7 +58,24 @@ pub fn variants() -> Vec<Variant> {
         mesh: "sphere48",
         desc: inside(w, h),
     });
+    out.push(Variant {
+        name: "unculled_gouraud".into(),
+        mesh: "sphere48",
+        desc: unculled(w, h),
+    });
     out
+}
+
+/// S1 with culling off and one side lit: every back face is set up (a
+/// positive doubled area, lit as the front) and lost to the depth test
+/// behind the front faces, or drawn where none covers it. What runs the
+/// lean set-up's triangles of either orientation on the devices (the
+/// standard scenes cull theirs, and INSIDE lights both sides, so that its
+/// back faces take their own colours).
+pub fn unculled(w: u32, h: u32) -> SceneDesc {
+    let mut d = standard_scenes::s1(w, h);
+    d.cull = false;
+    d
 }
 
 /// S1's sphere seen from inside with culling off and both sides lit: every

@@ -352,7 +352,8 @@ pub fn run(raw: &Path, out: &Path, peers_tsv: Option<&Path>) -> Result<(), Strin
         md,
         "\nS1–S4 in their own shading mode; ′: the same scene in another mode. INSIDE: S1's \
          sphere from inside, culling off, both sides lit, cut by the near plane: the triangle \
-         loop's kept back faces and the rare path (`src/clip.rs`).\n"
+         loop's kept back faces and the rare path (`src/clip.rs`). UNCULLED: S1 with culling \
+         off and one side lit: back faces set up as the front ones are.\n"
     );
 
     let find = |v: &[Frame], n: &str| v.iter().find(|f| f.name == n).map(|f| f.instructions);
