@@ -15,6 +15,30 @@
 
 use crate::planes::{Planes, Row};
 
+/// `asm!` for a routine that takes its argument in r0 and may change every
+/// other register `asm!` can name (r1–r5, r8–r12, lr; r6 and r7 it saves
+/// itself): the caller's template and operands, a comma after the last,
+/// and those registers marked as changed, written once here.
+#[cfg(any(fixshade_thumb1, fixshade_thumb2))]
+macro_rules! asm_every_register {
+    ($($t:tt)*) => {
+        core::arch::asm!(
+            $($t)*
+            out("r1") _,
+            out("r2") _,
+            out("r3") _,
+            out("r4") _,
+            out("r5") _,
+            out("r8") _,
+            out("r9") _,
+            out("r10") _,
+            out("r11") _,
+            out("r12") _,
+            out("lr") _,
+        )
+    };
+}
+
 /// The core has no 32 × 32 → 64-bit multiply instruction (ARMv6-M: the
 /// Cortex-M0 and M0+, the RP2040's core; ARMv8-M Baseline: the Cortex-M23),
 /// so a product of two `i64`s is a call to `__aeabi_lmul`, a 64 × 64-bit
@@ -487,7 +511,7 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     // `run` updated) at the offsets of their `repr(C)` layouts. r6 and r7
     // are pushed and popped around their use; sp is restored.
     unsafe {
-        core::arch::asm!(
+        asm_every_register!(
             "push {{r6, r7}}",
             "mov r7, r0",
             // The planes at column 0 of the first row: at + gy·dy.
@@ -563,24 +587,13 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
             "9:",
             "pop {{r6, r7}}",
             inout("r0") run as *mut Rows => _,
-            out("r1") _,
-            out("r2") _,
-            out("r3") _,
-            out("r4") _,
-            out("r5") _,
-            out("r8") _,
-            out("r9") _,
-            out("r10") _,
-            out("r11") _,
-            out("r12") _,
-            out("lr") _,
         );
     }
     #[cfg(fixshade_thumb1)]
     // SAFETY: as above; lr holds `run` through the loop, r12 a row's end;
     // `rowv` holds the current row's planes.
     unsafe {
-        core::arch::asm!(
+        asm_every_register!(
             "push {{r6, r7}}",
             "mov lr, r0",
             // The steps into r8–r11, the first row's planes into rowv.
@@ -701,17 +714,6 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
             "9:",
             "pop {{r6, r7}}",
             inout("r0") run as *mut Rows => _,
-            out("r1") _,
-            out("r2") _,
-            out("r3") _,
-            out("r4") _,
-            out("r5") _,
-            out("r8") _,
-            out("r9") _,
-            out("r10") _,
-            out("r11") _,
-            out("r12") _,
-            out("lr") _,
         );
     }
     #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
@@ -967,7 +969,7 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
         // SAFETY: the caller's contract; the scratch is below sp, which is
         // restored before the block ends.
         unsafe {
-            core::arch::asm!(
+            asm_every_register!(
                 "push {{r6, r7}}",
                 "sub sp, #72",
                 "mov r7, r0",
@@ -1254,17 +1256,6 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "add sp, #72",
                 "pop {{r6, r7}}",
                 inout("r0") args as *const GouraudSetUp => n,
-                out("r1") _,
-                out("r2") _,
-                out("r3") _,
-                out("r4") _,
-                out("r5") _,
-                out("r8") _,
-                out("r9") _,
-                out("r10") _,
-                out("r11") _,
-                out("r12") _,
-                out("lr") _,
             );
         }
         usize::try_from(n).ok()

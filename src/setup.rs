@@ -1,7 +1,10 @@
 //! Triangle set-up in 32-bit arithmetic: the rows and columns a triangle
 //! covers, its edges and its attribute planes, and its rows' spans from
 //! the row walk (`src/walk.rs`), or, for a triangle of a few samples where
-//! the core divides in software, from each sample's edge functions.
+//! the core divides in software, from each sample's edge functions. On
+//! ARMv7-M a kept Gouraud triangle takes the same values from one routine
+//! of assembly (`platform::gouraud_set_up`, called by `src/shade.rs`),
+//! which leaves what it does not take to these functions.
 //!
 //! # Ranges
 //! Window positions are in 1/16 pixel from the set-up's origin, within
