@@ -329,7 +329,7 @@ impl Rows {
     /// and `p = ⌊xs·r/2³¹⌋` is `2¹⁶` times the quotient `Q` within a
     /// relative `2⁻²⁷` ([`mul_i32_u32_shr31`]: only the product's high part
     /// is made): `|Q| < 2¹⁴`, so within `2⁻¹³` of it, and within `|Q|·2⁻¹¹`
-    /// units of 2⁻¹⁶ ([`near_half`]). Where the estimate's fraction lies
+    /// units of 2⁻¹⁶, below 8 ([`near_half`]). Where the estimate's fraction lies
     /// that close to a half, the rounding is taken from the exact division.
     /// For the depth, `0 ≤ z₁₄ < w₁₄` and `zs = z₁₄·2ⁿ⁻¹ < 2³¹` (`n ≥ 1` as
     /// `w₁₄ < 2³¹`), `⌊zs·r/2³¹⌋` below 2³¹ (`w₁₄ ≥ 2²²`); it is not
@@ -343,7 +343,7 @@ impl Rows {
         let estimate = |v: i32| {
             let p = mul_i32_u32_shr31(v << n, r);
             let q = (p + (1 << 15)) >> 16;
-            (q, near_half(p, q))
+            (q, near_half(p))
         };
         let ((x, near_x), (y, near_y)) = (estimate(x14), estimate(y14));
         let zp = mul_i32_u32_shr31(z14 << (n - 1), r);
@@ -393,14 +393,17 @@ impl Rows {
     }
 }
 
-/// Whether the estimate `p = Q·2¹⁶` (its floor, rounded to `q`) may lie on
-/// the other side of a rounding's half than `Q`: its 16 bits below the
-/// unit within `|q|/2¹¹ + 3` of `2¹⁵` (the estimate's error, `|Q|·2⁻¹¹`
-/// units, and one for the truncation).
+/// Whether the estimate `p = Q·2¹⁶` (its floor) may lie on the other side
+/// of a rounding's half than `Q`, for `|Q| < 2¹⁴` (inside the guard band,
+/// as every caller's is): its 16 bits below the unit within 10 of `2¹⁵`.
+/// The estimate's error is `|Q|·2⁻¹¹` units, below 8, and one more for
+/// the truncation; the bound 10 is that of the largest `|Q|`, taken for
+/// every `Q` so that the test is one comparison (a smaller `Q` near a
+/// half takes the exact division a little more often, with the same
+/// rounding).
 #[inline(always)]
-fn near_half(p: i32, q: i32) -> bool {
-    let f = (p & 0xFFFF) - 0x8000;
-    f.unsigned_abs() <= (q.unsigned_abs() >> 11) + 3
+fn near_half(p: i32) -> bool {
+    ((p & 0xFFFF) - (0x8000 - 10)) as u32 <= 20
 }
 
 /// `round(x·2¹⁶/w)` exactly, half up (`|x| < 2³¹`, `w > 0`).
@@ -886,6 +889,33 @@ mod tests {
                 assert_eq!((hi + (lo >> 14)) as i64, v >> 14);
                 assert_eq!(row.fourteen(q) as i64, v >> 14);
             }
+        }
+    }
+
+    /// Quotients within a few units of 2⁻¹⁶ of a half, across the guard
+    /// band (`|Q| < 2¹⁴`) and `W` from 2²² to 2³¹: the fast form's
+    /// positions are still the exact roundings (`near_half` sends them to
+    /// the exact division), and its depth within one unit.
+    #[test]
+    fn near_halves_round_exactly() {
+        let mut next = xorshift(0x5151_7a7a_0c0c_e3e3);
+        for i in 0..300_000u64 {
+            let w14 = (1i64 << 22) + (next() % ((1 << 31) - (1 << 22))) as i64;
+            let k = (next() % 32_760) as i64 - 16_380;
+            // x₁₄ near (k + ½)·w₁₄/2¹⁶, moved by a few of its units (each
+            // below 2⁻⁶ of a unit of 2⁻¹⁶ of Q); every tenth anywhere.
+            let half = ((2 * k + 1) * w14) >> 17;
+            let x14 = if i % 10 == 0 {
+                ((next() % (w14 as u64 / 2)) as i64 - w14 / 4 + 1) as i32
+            } else {
+                (half + (next() % 9) as i64 - 4) as i32
+            };
+            let (w14, y14, z14) = (w14 as i32, -(x14 / 3), (w14 / 3) as i32);
+            let [x, y, z] = Rows::divided([x14, y14, z14, w14]);
+            assert_eq!(x, exact_round(x14, w14), "{x14} {w14}");
+            assert_eq!(y, exact_round(y14, w14), "{y14} {w14}");
+            let ez = z14 as f64 / w14 as f64 * 2f64.powi(25);
+            assert!((z as f64 - ez).abs() <= 1.0, "{z} {ez}");
         }
     }
 
