@@ -215,6 +215,12 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
         )
     }
 
+    /// Whether [`Lighting::shade`] reads its position: a light that does
+    /// (a point-like one), or the local viewer's `V` for a specular term.
+    /// Where it does not, a caller may pass any position.
+    pub(crate) const READS_POSITION: bool =
+        <L::Prepared as PreparedLights>::READS_POSITION || (S::ENABLED && V::LOCAL);
+
     /// `E + A·Ka` alone, as `Q.16` (what a surface no light reaches shows).
     ///
     /// ```

@@ -379,6 +379,10 @@ pub trait PreparedLights: Clone + core::fmt::Debug {
     /// everywhere, so nothing of a surface (its normal, its position) is
     /// made for it.
     const EMPTY: bool = false;
+    /// Whether a light here reads the surface's position (a point-like
+    /// light's direction and distance): where none does, the vertex stage
+    /// does not make the eye position for the lighting.
+    const READS_POSITION: bool = true;
     /// Adds this light's (or these lights') contribution at `ctx` to `acc`
     /// (`Q.16` per channel, saturating).
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]);
@@ -513,6 +517,7 @@ pub struct PreparedDirectional {
 }
 
 impl PreparedLights for PreparedDirectional {
+    const READS_POSITION: bool = false;
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         if S::BLINN && ctx.view == Unit3::Z {
@@ -1265,6 +1270,7 @@ impl LightSet for () {
 
 impl PreparedLights for () {
     const EMPTY: bool = true;
+    const READS_POSITION: bool = false;
     #[inline(always)]
     fn shade<S: Specular>(&self, _: &Surface, _: &mut [u32; 3]) {}
 }
@@ -1279,6 +1285,7 @@ macro_rules! tuple_sets {
         }
         impl<$($t: PreparedLights),+> PreparedLights for ($($t,)+) {
             const EMPTY: bool = $($t::EMPTY)&&+;
+            const READS_POSITION: bool = $($t::READS_POSITION)||+;
             #[inline]
             fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
                 $(self.$i.shade::<S>(ctx, acc);)+
@@ -1307,6 +1314,7 @@ impl<L: LightSet, const N: usize> LightSet for [L; N] {
 
 impl<P: PreparedLights, const N: usize> PreparedLights for [P; N] {
     const EMPTY: bool = P::EMPTY || N == 0;
+    const READS_POSITION: bool = P::READS_POSITION && N > 0;
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         for l in self {
@@ -1328,6 +1336,7 @@ impl<L: LightSet, const N: usize> LightSet for heapless::Vec<L, N> {
 }
 
 impl<P: PreparedLights, const N: usize> PreparedLights for heapless::Vec<P, N> {
+    const READS_POSITION: bool = P::READS_POSITION;
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         for l in self {

@@ -952,7 +952,9 @@ macro_rules! thumb2_channel {
 /// On ARMv7-M one block of assembly, the triangle's values in registers
 /// from stage to stage: the corners sorted, the walk's edges by `sdiv`
 /// (each of five words, the two or three of a triangle in a scratch of 72
-/// bytes on the stack), 14 instructions a row, the reciprocal and the four
+/// bytes on the stack), 12 instructions a row (each edge's remainder kept
+/// less its divisor, the carry tested by the add's sign), the reciprocal
+/// and the four
 /// `Λ`, 31 instructions an attribute's plane. `r6` and `r7`, which `asm!`
 /// may not name, are pushed and popped; sp is restored. Elsewhere `None`:
 /// [`GOURAUD_SET_UP`] is false there and the caller does not ask.
@@ -1067,6 +1069,10 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "addlt r3, sp, #36",
                 "ldm r3, {{r5, r6, r8, r9, r10}}",
                 "ldm r11, {{r0, r1, r2, r3, r4}}",
+                // Each remainder kept less its divisor, so that the add's
+                // sign is the carry's test.
+                "sub r1, r1, r2",
+                "sub r6, r6, r8",
                 // The rows up to the switch or the last: r11 the next
                 // row's span, r12 their end.
                 "ldr lr, [r7, #20]",
@@ -1083,17 +1089,15 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "sub lr, r5, r0",
                 "strd r0, lr, [r11], #8",
                 "add r0, r0, r3",
-                "add r1, r1, r4",
-                "cmp r1, r2",
-                "itt ge",
-                "subge r1, r1, r2",
-                "subge r0, r0, #1",
+                "adds r1, r1, r4",
+                "itt pl",
+                "subpl r1, r1, r2",
+                "subpl r0, r0, #1",
                 "add r5, r5, r9",
-                "add r6, r6, r10",
-                "cmp r6, r8",
-                "itt ge",
-                "subge r6, r6, r8",
-                "subge r5, r5, #1",
+                "adds r6, r6, r10",
+                "itt pl",
+                "subpl r6, r6, r8",
+                "subpl r5, r5, #1",
                 "cmp r11, r12",
                 "bne 5b",
                 // All rows done? r12 the table's end.
@@ -1106,6 +1110,8 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "beq 6f",
                 // The lower short edge m → b from the switch's row, in
                 // place of the right edge (long on the left) or the left.
+                "add r1, r1, r2",
+                "add r6, r6, r8",
                 "add lr, sp, #16",
                 "stm lr, {{r0, r1, r2, r3, r4}}",
                 "add lr, sp, #36",
@@ -1125,6 +1131,8 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "ldm lr, {{r5, r6, r8, r9, r10}}",
                 "add lr, sp, #16",
                 "ldm lr, {{r0, r1, r2, r3, r4}}",
+                "sub r1, r1, r2",
+                "sub r6, r6, r8",
                 "ldrd r11, r12, [sp, #60]",
                 "b 5b",
                 // Any span with a pixel? Else 0: no planes.

@@ -106,7 +106,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         match M::KIND {
             ShadingKind::Gouraud => {
                 if platform::GOURAUD_SET_UP && !back && !s.clamp {
-                    if let Some(res) = self.gouraud_in_one(c, area, s, out, depth, stats) {
+                    // SAFETY: the contract above.
+                    if let Some(res) = unsafe { self.gouraud_in_one(c, area, s, out, depth, stats) }
+                    {
                         return res;
                     }
                 }
@@ -227,8 +229,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// whose entry keeps the back face's colour, more rows than a table,
     /// a steep plane), which then finds the same spans and planes.
     /// Out of line, as [`Frame::draw`] is: the row loop gets the registers.
+    ///
+    /// # Safety
+    /// Every `c.slot[k] < c.cache.len()` ([`Frame::whole`]'s contract).
     #[inline(never)]
-    fn gouraud_in_one<O: Out, D: DepthTest>(
+    unsafe fn gouraud_in_one<O: Out, D: DepthTest>(
         &self,
         c: &mut Corners,
         area: i32,
@@ -239,7 +244,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     ) -> Option<Result<(), O::Error>> {
         let mut entries = [core::ptr::null(); 3];
         for (k, e) in entries.iter_mut().enumerate() {
-            let v = c.cache.get_mut(c.slot[k])?;
+            // SAFETY: the contract above.
+            let v = unsafe { c.cache.get_unchecked_mut(c.slot[k]) };
             if !self.stage.lit_front(v, c.vertex[k], stats) {
                 return None;
             }

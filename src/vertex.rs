@@ -816,7 +816,14 @@ impl<'a, 'm, S: Specular, V: Viewer, L: LightSet> Stage<'a, 'm, S, V, L> {
     fn light(&self, v: &mut CachedVertex, i: usize, want: u64, stats: &mut DrawStats) -> Shade {
         let n = self.eye_normal(i);
         let n = if want == B_BACK { n.neg() } else { n };
-        let s = self.lighting.shade(self.eye(i), n);
+        // The eye position only for a term that reads it (not for
+        // directional lights under the infinite viewer).
+        let p = if Lighting::<S, V, L>::READS_POSITION {
+            self.eye(i)
+        } else {
+            Vec3::ZERO
+        };
+        let s = self.lighting.shade(p, n);
         stats.lit = stats.lit.saturating_add(1);
         let bits = v.bits();
         if bits & (B_FRONT | B_BACK) == 0 {
