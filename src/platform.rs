@@ -960,9 +960,12 @@ macro_rules! thumb2_channel {
 /// [`GOURAUD_SET_UP`] is false there and the caller does not ask.
 ///
 /// # Safety
-/// The entries are readable 16-byte cache entries whose colour word holds
-/// a lit colour; `nodes` is that table; `planes` is valid for writes of a
-/// `Planes<4>` and `table` for 32 rows.
+/// The entries are readable 16-byte cache entries of kept vertices (window
+/// positions inside the guard band, so that every difference of two is
+/// below 2¹⁵ and every product of two differences below 2³⁰) whose
+/// colour word holds a lit colour; `nodes` is that table; `planes` is
+/// valid for writes of a `Planes<4>` and `table` for 32 rows (the routine
+/// writes at most that many, whatever the entries hold).
 #[inline(always)]
 pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
     #[cfg(fixshade_thumb2)]
