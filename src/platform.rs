@@ -770,7 +770,9 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
 /// set up by [`gouraud_set_up`]'s one routine of assembly instead of the
 /// set-up's stages in Rust: on ARMv7-M, where the Rust stages hand the
 /// triangle from one to the next through memory (its corners, its
-/// walk, its planes; some 350 instructions a triangle of S1 on the M4F).
+/// walk, its planes): with the routine, S1's set-up and walk on the M4F
+/// went from 933 to 734 instructions a drawn triangle (report/firmware.md's
+/// stage table, `scripts/firmware.sh`).
 pub(crate) const GOURAUD_SET_UP: bool = cfg!(fixshade_thumb2);
 
 /// What [`gouraud_set_up`] reads and writes: a kept triangle's three
@@ -952,10 +954,10 @@ macro_rules! thumb2_channel {
 /// On ARMv7-M one block of assembly, the triangle's values in registers
 /// from stage to stage: the corners sorted, the walk's edges by `sdiv`
 /// (each of five words, the two or three of a triangle in a scratch of 72
-/// bytes on the stack), 12 instructions a row (each edge's remainder kept
+/// bytes on the stack), 14 instructions a row (each edge's remainder kept
 /// less its divisor, the carry tested by the add's sign), the reciprocal
 /// and the four
-/// `Λ`, 31 instructions an attribute's plane. `r6` and `r7`, which `asm!`
+/// `Λ`, 30 instructions an attribute's plane besides its values' loads. `r6` and `r7`, which `asm!`
 /// may not name, are pushed and popped; sp is restored. Elsewhere `None`:
 /// [`GOURAUD_SET_UP`] is false there and the caller does not ask.
 ///
