@@ -66,7 +66,7 @@ use crate::mesh::Mesh;
 use crate::options::{check_bounds, DrawStats, RenderError, ShadingKind, ShadingMode};
 use crate::render::Prepared;
 use crate::shade::Frame;
-use crate::span::Memory;
+use crate::span::{Memory, Out};
 use crate::vertex::CachedVertex;
 pub use crate::vertex::{Cached, Recomputed, VertexMode};
 
@@ -410,6 +410,7 @@ impl Job<'_, '_> {
                 return Err(RenderError::DepthTooSmall);
             }
             let mut out = Memory::new(&mut bands.colour[..npx], w, y0, frame.origin);
+            out.fit_rows(depth, &frame.rect);
             for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
                 if hi < b0 || lo > b1 {
                     continue;

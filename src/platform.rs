@@ -482,6 +482,105 @@ impl<'a> Rows<'a> {
     }
 }
 
+// ARMv7-M: `gouraud_depth_rows`' loop as a routine of the procedure
+// call standard (`r0` the `Rows`, the pixels written returned in `r0`,
+// r4–r11 kept), so that `gouraud_set_up`'s routine calls it too.
+#[cfg(fixshade_thumb2)]
+core::arch::global_asm!(
+    ".section .text.fixshade_gouraud_rows,\"ax\",%progbits",
+    ".global fixshade_gouraud_rows",
+    ".type fixshade_gouraud_rows, %function",
+    ".p2align 2",
+    ".thumb_func",
+    "fixshade_gouraud_rows:",
+    "push {{r4, r5, r6, r7, r8, r9, r10, r11, lr}}",
+    "mov r7, r0",
+    // The planes at column 0 of the first row: at + gy·dy; the
+    // steps down a row copied into `rowv` (one `ldm` a row).
+    "ldrd r12, r1, [r7, #16]",
+    "ldm r12!, {{r3, r4, r5, r6}}",
+    "ldm r12!, {{r8, r9, r10, r11}}",
+    "ldm r12, {{r0, r2, r12, lr}}",
+    "stm r7, {{r0, r2, r12, lr}}",
+    "mla r3, r0, r1, r3",
+    "mla r4, r2, r1, r4",
+    "mla r5, r12, r1, r5",
+    "mla r6, lr, r1, r6",
+    // `zbase` becomes the depth store's distance from the colour
+    // store: one pointer a span, the depth at `[r2, r0]`.
+    "ldr r0, [r7, #32]",
+    "ldr r1, [r7, #40]",
+    "sub r1, r1, r0",
+    "str r1, [r7, #40]",
+    "ldr r12, [r7, #24]",
+    "1:",
+    "ldm r12!, {{r0, r1}}",
+    "str r12, [r7, #24]",
+    "cmp r1, #0",
+    "ble 6f",
+    "ldr r12, [r7, #44]",
+    "add r12, r1",
+    "str r12, [r7, #44]",
+    "push {{r3, r4, r5, r6}}",
+    "mla r3, r8, r0, r3",
+    "mla r4, r9, r0, r4",
+    "mla r5, r10, r0, r5",
+    "mla r6, r11, r0, r6",
+    "ldr r2, [r7, #32]",
+    "add r2, r2, r0, lsl #1",
+    "ldr r0, [r7, #40]",
+    "2:",
+    "ldrh r12, [r2, r0]",
+    "usat lr, #16, r3, asr #12",
+    "cmp lr, r12",
+    "bhs 4f",
+    "strh lr, [r2, r0]",
+    "lsrs r12, r5, #20",
+    "lsrs lr, r4, #20",
+    "orr lr, r12, lr, lsl #6",
+    "lsrs r12, r6, #20",
+    "orr lr, r12, lr, lsl #5",
+    "strh lr, [r2], #2",
+    "3:",
+    "add r3, r8",
+    "add r4, r9",
+    "add r5, r10",
+    "add r6, r11",
+    "subs r1, #1",
+    "bne 2b",
+    "pop {{r3, r4, r5, r6}}",
+    "6:",
+    "ldm r7, {{r0, r1, r2, lr}}",
+    "add r3, r0",
+    "add r4, r1",
+    "add r5, r2",
+    "add r6, lr",
+    "ldrd r0, r1, [r7, #32]",
+    "add r0, r1",
+    "str r0, [r7, #32]",
+    "ldrd r12, r0, [r7, #24]",
+    "cmp r12, r0",
+    "bne 1b",
+    "b 9f",
+    "4:",
+    "adds r2, #2",
+    "ldr r12, [r7, #48]",
+    "adds r12, #1",
+    "str r12, [r7, #48]",
+    "b 3b",
+    "9:",
+    "ldrd r0, r1, [r7, #44]",
+    "sub r0, r0, r1",
+    "pop {{r4, r5, r6, r7, r8, r9, r10, r11, pc}}",
+    ".size fixshade_gouraud_rows, . - fixshade_gouraud_rows",
+);
+
+#[cfg(fixshade_thumb2)]
+extern "C" {
+    /// [`gouraud_depth_rows`]' loop (the `global_asm!` above).
+    fn fixshade_gouraud_rows(run: *mut Rows) -> u32;
+}
+
 /// The Gouraud rows of `run` through the depth test: each pixel's depth is
 /// `clamp(z >> 12, 0, 65535)`, written with the pixel's colour
 /// ([`pack_planes`]) where it is below the stored one; returns the pixels
@@ -506,94 +605,28 @@ impl<'a> Rows<'a> {
 #[inline(never)]
 pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     #[cfg(fixshade_thumb2)]
-    // SAFETY: `run`'s table has at least one row, each span within both
-    // stores (`Rows::new`'s contract); `run` and its planes are read (and
-    // `run` updated) at the offsets of their `repr(C)` layouts. r6 and r7
-    // are pushed and popped around their use; sp is restored.
+    // SAFETY: `Rows::new`'s contract; the routine keeps the registers the
+    // procedure call standard asks it to.
     unsafe {
-        asm_every_register!(
-            "push {{r6, r7}}",
-            "mov r7, r0",
-            // The planes at column 0 of the first row: at + gy·dy; the
-            // steps down a row copied into `rowv` (one `ldm` a row).
-            "ldrd r12, r1, [r7, #16]",
-            "ldm r12!, {{r3, r4, r5, r6}}",
-            "ldm r12!, {{r8, r9, r10, r11}}",
-            "ldm r12, {{r0, r2, r12, lr}}",
-            "stm r7, {{r0, r2, r12, lr}}",
-            "mla r3, r0, r1, r3",
-            "mla r4, r2, r1, r4",
-            "mla r5, r12, r1, r5",
-            "mla r6, lr, r1, r6",
-            // `zbase` becomes the depth store's distance from the colour
-            // store: one pointer a span, the depth at `[r2, r0]`.
-            "ldr r0, [r7, #32]",
-            "ldr r1, [r7, #40]",
-            "sub r1, r1, r0",
-            "str r1, [r7, #40]",
-            "ldr r12, [r7, #24]",
-            "1:",
-            "ldm r12!, {{r0, r1}}",
-            "str r12, [r7, #24]",
-            "cmp r1, #0",
-            "ble 6f",
-            "ldr r12, [r7, #44]",
-            "add r12, r1",
-            "str r12, [r7, #44]",
-            "push {{r3, r4, r5, r6}}",
-            "mla r3, r8, r0, r3",
-            "mla r4, r9, r0, r4",
-            "mla r5, r10, r0, r5",
-            "mla r6, r11, r0, r6",
-            "ldr r2, [r7, #32]",
-            "add r2, r2, r0, lsl #1",
-            "ldr r0, [r7, #40]",
-            "2:",
-            "ldrh r12, [r2, r0]",
-            "usat lr, #16, r3, asr #12",
-            "cmp lr, r12",
-            "bhs 4f",
-            "strh lr, [r2, r0]",
-            "lsrs r12, r5, #20",
-            "lsrs lr, r4, #20",
-            "orr lr, r12, lr, lsl #6",
-            "lsrs r12, r6, #20",
-            "orr lr, r12, lr, lsl #5",
-            "strh lr, [r2], #2",
-            "3:",
-            "add r3, r8",
-            "add r4, r9",
-            "add r5, r10",
-            "add r6, r11",
-            "subs r1, #1",
-            "bne 2b",
-            "pop {{r3, r4, r5, r6}}",
-            "6:",
-            "ldm r7, {{r0, r1, r2, lr}}",
-            "add r3, r0",
-            "add r4, r1",
-            "add r5, r2",
-            "add r6, lr",
-            "ldrd r0, r1, [r7, #32]",
-            "add r0, r1",
-            "str r0, [r7, #32]",
-            "ldrd r12, r0, [r7, #24]",
-            "cmp r12, r0",
-            "bne 1b",
-            "b 9f",
-            "4:",
-            "adds r2, #2",
-            "ldr r12, [r7, #48]",
-            "adds r12, #1",
-            "str r12, [r7, #48]",
-            "b 3b",
-            "9:",
-            "pop {{r6, r7}}",
-            inout("r0") run as *mut Rows => _,
-        );
+        fixshade_gouraud_rows(run)
     }
+    #[cfg(not(fixshade_thumb2))]
+    {
+        gouraud_rows_here(run)
+    }
+}
+
+/// [`gouraud_depth_rows`] where it is not a routine of its own: inline
+/// assembly on ARMv6-M, Rust elsewhere.
+#[cfg(not(fixshade_thumb2))]
+#[inline(always)]
+fn gouraud_rows_here(run: &mut Rows) -> u32 {
     #[cfg(fixshade_thumb1)]
-    // SAFETY: as above; lr holds `run` through the loop, r12 a row's end;
+    // SAFETY: `Rows::new`'s contract: the table has at least one row, each
+    // span within both stores; `run` and its planes are read (and `run`
+    // updated) at the offsets of their `repr(C)` layouts. r6 and r7 are
+    // pushed and popped around their use; sp is restored. lr holds `run`
+    // through the loop, r12 a row's end;
     // `rowv` holds the current row's planes.
     unsafe {
         asm_every_register!(
@@ -782,8 +815,9 @@ pub(crate) const GOURAUD_SET_UP: bool = cfg!(fixshade_thumb2);
 /// vertex-cache entries (16 bytes each: `x` and `y` as `i16` in the first
 /// word, the depth attribute in the second, the lit colour's three 17-bit
 /// channels from bit 0 of the third word), its doubled area, its rows of
-/// samples, and where the planes and the rows' spans go. `repr(C)`: the
-/// assembly reads it at these offsets (0, 12, 16, 20, 24, 28, 32).
+/// samples, where the planes and the rows' spans go, and where the rows
+/// are drawn, if the routine is to draw them. `repr(C)`: the assembly
+/// reads it at these offsets (0, 12, 16, 20, 24, 28, 32, 36, 40, 44).
 #[repr(C)]
 pub(crate) struct GouraudSetUp {
     pub(crate) entries: [*const u32; 3],
@@ -794,6 +828,13 @@ pub(crate) struct GouraudSetUp {
     pub(crate) nodes: *const u32,
     pub(crate) planes: *mut Planes<4>,
     pub(crate) table: *mut Row,
+    /// Column 0 of the first row in the colour store, or null: the rows
+    /// are then left to the caller.
+    pub(crate) cbase: *mut u16,
+    /// Bytes from a row to the next, in both stores.
+    pub(crate) stride: u32,
+    /// Column 0 of the first row in the depth store.
+    pub(crate) zbase: *mut u16,
 }
 
 /// ARMv7-M, [`gouraud_set_up`]: the edge from the packed position in r1
@@ -948,8 +989,10 @@ macro_rules! thumb2_channel {
 /// depth, then red, green and blue) into `args.planes`, the values of
 /// `setup::set_up` and `setup::planes` for its `Vtx<4>` corners (each
 /// corner's depth attribute and lit colour as `shade.rs`'s Gouraud
-/// attributes, `v·m + 2¹⁵`). Returns the rows written (`last_row −
-/// first_row + 1`), 0 where none covers a sample (no planes), and `None`
+/// attributes, `v·m + 2¹⁵`). With `args.cbase` not null it draws the
+/// rows too ([`gouraud_depth_rows`]' routine, called) and returns the
+/// pixels written; else it returns the rows written (`last_row −
+/// first_row + 1`); 0 where none covers a sample (no planes), and `None`
 /// where the Rust set-up is to take the triangle: more than 32 rows, or a
 /// plane too steep for the 32-bit gradients (the exact quotients'). The
 /// caller has ruled out rows whose spans need a clamp.
@@ -970,7 +1013,11 @@ macro_rules! thumb2_channel {
 /// below 2¹⁵ and every product of two differences below 2³⁰) whose
 /// colour word holds a lit colour; `nodes` is that table; `planes` is
 /// valid for writes of a `Planes<4>` and `table` for 32 rows (the routine
-/// writes at most that many, whatever the entries hold).
+/// writes at most that many, whatever the entries hold); a `cbase` not
+/// null and `zbase` are column 0 of `first_row` in a colour and a depth
+/// store in which every row to `last_row`, at every column a span of the
+/// triangle's may take, lies (`Rows::new`'s contract, `stride` bytes a
+/// row).
 #[inline(always)]
 pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
     #[cfg(fixshade_thumb2)]
@@ -1265,12 +1312,29 @@ pub(crate) unsafe fn gouraud_set_up(args: &GouraudSetUp) -> Option<usize> {
                 "ldrd r1, r2, [r7, #16]",
                 "sub r0, r2, r1",
                 "add r0, r0, #1",
+                // With stores, the rows drawn by the row loop's routine
+                // from a `Rows` in the scratch (its planes, dy 0, the
+                // table, its end, the bases and the stride, no pixel yet).
+                "ldr r5, [r7, #36]",
+                "cbz r5, 99f",
+                "ldr r1, [r7, #28]",
+                "movs r2, #0",
+                "ldr r3, [r7, #32]",
+                "add r4, r3, r0, lsl #3",
+                "ldrd r6, r8, [r7, #40]",
+                "movs r9, #0",
+                "movs r10, #0",
+                "add r12, sp, #16",
+                "stm r12, {{r1, r2, r3, r4, r5, r6, r8, r9, r10}}",
+                "mov r0, sp",
+                "bl {rows}",
                 "b 99f",
                 "90:",
                 "mvn r0, #0",
                 "99:",
                 "add sp, #72",
                 "pop {{r6, r7}}",
+                rows = sym fixshade_gouraud_rows,
                 inout("r0") args as *const GouraudSetUp => n,
             );
         }

@@ -253,6 +253,17 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         }
         let mut planes = MaybeUninit::<Planes<4>>::uninit();
         let mut table = [MaybeUninit::<Row>::uninit(); CHUNK];
+        // Undithered rows in stores that hold the draw's rect: drawn by
+        // the routine itself.
+        let stores = if self.options.dither {
+            None
+        } else {
+            out.row_stores(depth, s.rows.0)
+        };
+        let (cbase, zbase, stride) = match &stores {
+            Some(t) => (t.colour, t.depth, t.stride),
+            None => (core::ptr::null_mut(), core::ptr::null_mut(), 0),
+        };
         let args = platform::GouraudSetUp {
             entries,
             area,
@@ -261,12 +272,21 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             nodes: recip_nodes(),
             planes: planes.as_mut_ptr(),
             table: table.as_mut_ptr().cast::<Row>(),
+            cbase,
+            stride,
+            zbase,
         };
         // SAFETY: three cache entries lit for the front face, the
         // reciprocals' table, a slot for the planes and a table of CHUNK
-        // (32) rows.
+        // (32) rows; the stores hold every row of the draw's rect (in
+        // which the samples `s` lie, with the columns of every span: no
+        // span of this triangle needs a clamp).
         let n = unsafe { platform::gouraud_set_up(&args) }?;
         stats.drawn = stats.drawn.saturating_add(1);
+        if stores.is_some() {
+            stats.pixels = stats.pixels.saturating_add(n as u32);
+            return Some(Ok(()));
+        }
         if n == 0 {
             return Some(Ok(()));
         }

@@ -29,6 +29,7 @@ use crate::material::Specular;
 use crate::normalize::normalize;
 use crate::planes::{Planes, Row};
 use crate::platform;
+use crate::setup::Rect;
 use crate::vector::{Unit3, Vec3};
 use crate::walk::Span;
 
@@ -434,6 +435,25 @@ pub(crate) trait Out {
     /// the rare path, `src/clip.rs`).
     fn moved(&mut self, by: (i32, i32));
 
+    /// Finds, once a draw (or a band), whether every pixel of `rect` lies
+    /// in a colour store and `depth`'s store laid out alike, so that
+    /// [`Out::row_stores`] may hand them out for the draw's rows.
+    #[inline(always)]
+    fn fit_rows<D: DepthTest>(&mut self, depth: &mut D, rect: &Rect) {
+        let _ = (depth, rect);
+    }
+
+    /// Column 0 of row `y` in the colour store and in `depth`'s, and the
+    /// bytes from a row to the next, where [`Out::fit_rows`] found the
+    /// draw's `rect` in both stores (and the origin has not moved since):
+    /// every row of that rect, at each of its columns, lies in both.
+    /// `depth` is the draw's, that `fit_rows` was asked with.
+    #[inline(always)]
+    fn row_stores<D: DepthTest>(&mut self, depth: &mut D, y: i32) -> Option<RowStores> {
+        let _ = (depth, y);
+        None
+    }
+
     /// Draws the spans of `rows` (table row `j` is row `y + j`, `dy + j`
     /// below the planes' first, its columns within `cols`) through depth
     /// test `D` with colours from `sh`; returns the pixels written.
@@ -490,6 +510,17 @@ pub(crate) struct Memory<'b> {
     /// The index of the set-up's origin pixel in `buf` (negative in a band
     /// below it: wrapping).
     at: u32,
+    /// The `at` for which [`Out::fit_rows`] found the draw's rect in both
+    /// stores.
+    fit: Option<u32>,
+}
+
+/// Column 0 of a row in a colour and a depth store laid out alike, and
+/// the bytes from a row to the next ([`Out::row_stores`]).
+pub(crate) struct RowStores {
+    pub(crate) colour: *mut u16,
+    pub(crate) depth: *mut u16,
+    pub(crate) stride: u32,
 }
 
 impl<'b> Memory<'b> {
@@ -502,6 +533,7 @@ impl<'b> Memory<'b> {
             y0,
             origin,
             at: 0,
+            fit: None,
         };
         m.moved((0, 0));
         m
@@ -575,6 +607,47 @@ impl Out for Memory<'_> {
             }
         }
         each_span(self, depth, rows, (y, dy), planes, sh)
+    }
+
+    fn fit_rows<D: DepthTest>(&mut self, depth: &mut D, rect: &Rect) {
+        self.fit = None;
+        if !D::ENABLED || rect.r0 > rect.r1 || rect.c0 > rect.c1 {
+            return;
+        }
+        let Some((zbuf, w, y0)) = depth.flat() else {
+            return;
+        };
+        if w != self.width || y0 != self.y0 {
+            return;
+        }
+        // Row r's column 0 at `first(r)`, as `rows` indexes it; linear from
+        // the rect's first row to its last (no wrap between: their
+        // distance is the exact one), so that every pixel of the rect lies
+        // between its first row's first column and its last row's last.
+        let first = |r: i32| (r as u32).wrapping_mul(self.width).wrapping_add(self.at) as i64;
+        let (a, b) = (first(rect.r0), first(rect.r1));
+        let len = self.buf.len().min(zbuf.len()) as i64;
+        if b - a == (rect.r1 - rect.r0) as i64 * self.width as i64
+            && a + rect.c0 as i64 >= 0
+            && b + (rect.c1 as i64) < len
+        {
+            self.fit = Some(self.at);
+        }
+    }
+
+    #[inline(always)]
+    fn row_stores<D: DepthTest>(&mut self, depth: &mut D, y: i32) -> Option<RowStores> {
+        if self.fit != Some(self.at) {
+            return None;
+        }
+        let (zbuf, _, _) = depth.flat()?;
+        // Inside both stores for a row of the fitted rect (`fit_rows`).
+        let first = (y as u32).wrapping_mul(self.width).wrapping_add(self.at) as usize;
+        Some(RowStores {
+            colour: self.buf.as_mut_ptr().wrapping_add(first),
+            depth: zbuf.as_mut_ptr().wrapping_add(first),
+            stride: 2 * self.width,
+        })
     }
 
     fn moved(&mut self, by: (i32, i32)) {
