@@ -1372,51 +1372,89 @@ pub(crate) const FLAGS_AT: usize = 12;
 #[cfg_attr(not(any(fixshade_thumb1, fixshade_thumb2)), allow(dead_code))]
 pub(crate) const RARE_BIT: u32 = 22;
 
-/// ARMv7-M, [`skip_culled`]'s loops: the addresses of the three entries
-/// of the triangle at `{p}` into `{a}`, `{b}`, `{c}`.
+/// ARMv7-M, [`skip_culled`]'s and [`gouraud_run`]'s loops: the addresses
+/// of the three entries of the triangle at `p` (its `u16` indices) into
+/// `a`, `b`, `c`, entries of 16 bytes from `base` (each argument a
+/// register's name or an operand's `{…}`).
 #[cfg(fixshade_thumb2)]
 macro_rules! thumb2_entries {
-    () => {
+    ($a:literal, $b:literal, $c:literal, $p:literal, $base:literal) => {
         concat!(
-            "ldrh {a}, [{p}]\n",
-            "ldrh {b}, [{p}, #2]\n",
-            "ldrh {c}, [{p}, #4]\n",
-            "add {a}, {base}, {a}, lsl #4\n",
-            "add {b}, {base}, {b}, lsl #4\n",
-            "add {c}, {base}, {c}, lsl #4\n",
+            "ldrh ",
+            $a,
+            ", [",
+            $p,
+            "]\n",
+            "ldrh ",
+            $b,
+            ", [",
+            $p,
+            ", #2]\n",
+            "ldrh ",
+            $c,
+            ", [",
+            $p,
+            ", #4]\n",
+            "add ",
+            $a,
+            ", ",
+            $base,
+            ", ",
+            $a,
+            ", lsl #4\n",
+            "add ",
+            $b,
+            ", ",
+            $base,
+            ", ",
+            $b,
+            ", lsl #4\n",
+            "add ",
+            $c,
+            ", ",
+            $base,
+            ", ",
+            $c,
+            ", lsl #4\n",
         )
     };
 }
 
-/// ARMv7-M, [`skip_culled`]'s loops: the doubled area of the entries at
-/// `{a}`, `{b}`, `{c}` (their first words) into `{area}`; a kept triangle
-/// to `8f`, else on from the next (`skip`, the local label stepping
-/// `{p}`; `head`, its loop's) or to `9f` at `{end}`.
+/// ARMv7-M, [`skip_culled`]'s and [`gouraud_run`]'s loops: the doubled
+/// area of the entries at `a`, `b`, `c` (their first words) into `area`,
+/// leaving `a`'s position in `a` and the differences `b − a`, `c − a` in
+/// `b` and `c`; a kept triangle to `8f`, else on from the next (`skip`,
+/// the local label stepping `p`; `head`, its loop's) or to `done` at
+/// `end`. Bit 0 of `mode`: cull back faces.
 #[cfg(fixshade_thumb2)]
 macro_rules! thumb2_area_next {
-    ($skip:literal, $head:literal) => {
+    ($a:literal, $b:literal, $c:literal, $area:literal, $mode:literal, $p:literal,
+     $end:literal, $skip:literal, $head:literal, $done:literal) => {
         concat!(
-            "ldr {a}, [{a}]\n",
-            "ldr {b}, [{b}]\n",
-            "ldr {c}, [{c}]\n",
-            "ssub16 {b}, {b}, {a}\n",
-            "ssub16 {c}, {c}, {a}\n",
-            "smusdx {area}, {b}, {c}\n",
-            "cmp {area}, #0\n",
-            "blt 8f\n",
-            "beq ",
-            $skip,
-            "f\n",
-            "tst {mode}, #1\n",
-            "beq 8f\n",
-            $skip,
-            ":\n",
-            "adds {p}, #6\n",
-            "cmp {p}, {end}\n",
-            "bne ",
-            $head,
-            "b\n",
-            "b 9f\n",
+            "ldr ", $a, ", [", $a, "]\n", "ldr ", $b, ", [", $b, "]\n", "ldr ", $c, ", [", $c,
+            "]\n", "ssub16 ", $b, ", ", $b, ", ", $a, "\n", "ssub16 ", $c, ", ", $c, ", ", $a,
+            "\n", "smusdx ", $area, ", ", $b, ", ", $c, "\n", "cmp ", $area, ", #0\n", "blt 8f\n",
+            "beq ", $skip, "f\n", "tst ", $mode, ", #1\n", "beq 8f\n", $skip, ":\n", "adds ", $p,
+            ", #6\n", "cmp ", $p, ", ", $end, "\n", "bne ", $head, "b\n", "b ", $done, "f\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`skip_culled`]'s and [`gouraud_run`]'s kept triangle: its
+/// box from [`thumb2_area_next`]'s `a`, `b`, `c`: the least and greatest
+/// of the differences b − a, c − a and 0 in each half (`sel` after
+/// `ssub16` takes each half by its own comparison), then a added back
+/// (differences within ±2¹⁵ in the guard band): the greatest corner into
+/// `hi`, the least into `lo`; `b` and `c` changed.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_box {
+    ($a:literal, $b:literal, $c:literal, $hi:literal, $lo:literal) => {
+        concat!(
+            "ssub16 ", $hi, ", ", $b, ", ", $c, "\n", "sel ", $hi, ", ", $b, ", ", $c, "\n",
+            "sel ", $lo, ", ", $c, ", ", $b, "\n", "mov ", $c, ", #0\n", "ssub16 ", $b, ", ", $hi,
+            ", ", $c, "\n", "sel ", $hi, ", ", $hi, ", ", $c, "\n", "ssub16 ", $b, ", ", $lo, ", ",
+            $c, "\n", "sel ", $lo, ", ", $c, ", ", $lo, "\n", "sadd16 ", $lo, ", ", $a, ", ", $lo,
+            "\n", "sadd16 ", $hi, ", ", $a, ", ", $hi, "\n",
         )
     };
 }
@@ -1552,7 +1590,7 @@ pub(crate) unsafe fn skip_culled(
                 "tst {mode}, #2",
                 "beq 3f",
                 "1:",
-                thumb2_entries!(),
+                thumb2_entries!("{a}", "{b}", "{c}", "{p}", "{base}"),
                 "ldr {t}, [{a}, #{flags}]",
                 "ldr {u}, [{b}, #{flags}]",
                 "orrs {t}, {u}",
@@ -1560,26 +1598,14 @@ pub(crate) unsafe fn skip_culled(
                 "orrs {t}, {u}",
                 "tst {t}, #{rare}",
                 "bne 9f",
-                thumb2_area_next!("2", "1"),
+                thumb2_area_next!("{a}", "{b}", "{c}", "{area}", "{mode}", "{p}", "{end}", "2", "1", "9"),
                 // The same without the flags.
                 "3:",
-                thumb2_entries!(),
-                thumb2_area_next!("4", "3"),
-                // A kept triangle's box: the least and greatest of the
-                // differences b − a, c − a and 0 in each half (`sel` after
-                // `ssub16` takes each half by its own comparison), then a
-                // added back. (Differences within ±2¹⁵ in the guard band.)
+                thumb2_entries!("{a}", "{b}", "{c}", "{p}", "{base}"),
+                thumb2_area_next!("{a}", "{b}", "{c}", "{area}", "{mode}", "{p}", "{end}", "4", "3", "9"),
+                // A kept triangle's box.
                 "8:",
-                "ssub16 {t}, {b}, {c}",
-                "sel {t}, {b}, {c}",
-                "sel {u}, {c}, {b}",
-                "mov {c}, #0",
-                "ssub16 {b}, {t}, {c}",
-                "sel {t}, {t}, {c}",
-                "ssub16 {b}, {u}, {c}",
-                "sel {u}, {c}, {u}",
-                "sadd16 {u}, {a}, {u}",
-                "sadd16 {t}, {a}, {t}",
+                thumb2_box!("{a}", "{b}", "{c}", "{t}", "{u}"),
                 "9:",
                 p = inout(reg) tris => at,
                 end = in(reg) end,
@@ -1661,6 +1687,251 @@ pub(crate) unsafe fn skip_culled(
     #[cfg(not(any(fixshade_thumb1, fixshade_thumb2)))]
     {
         None
+    }
+}
+
+/// The lit-for-the-front-face flag in a cache entry's flags word (the word
+/// at [`FLAGS_AT`]), which [`gouraud_run`] tests.
+#[cfg_attr(not(fixshade_thumb2), allow(dead_code))]
+pub(crate) const FRONT_BIT: u32 = 20;
+
+/// Whether the whole-frame loop of a cached Gouraud draw into stores that
+/// hold its rect runs [`gouraud_run`]: on ARMv7-M, where the one-routine
+/// set-up ([`GOURAUD_SET_UP`]) is.
+pub(crate) const GOURAUD_RUN: bool = GOURAUD_SET_UP;
+
+/// What [`gouraud_run`] reads and writes. `repr(C)`: the assembly reads
+/// it at its offsets (`set_up` 0, `rect` 48, `cbase` 64, `zbase` 68,
+/// `mode` 72, `light` 76, `area` 80, `lo` 84, `hi` 88, `drawn` 92,
+/// `pixels` 96).
+#[repr(C)]
+pub(crate) struct GouraudRun {
+    /// The set-up's arguments: its constants (`nodes`, `planes`,
+    /// `table`, `stride`) set by the caller, the rest by the loop.
+    pub(crate) set_up: GouraudSetUp,
+    /// The draw's rect: `c0`, `c1`, `r0`, `r1`.
+    pub(crate) rect: [i32; 4],
+    /// Column 0 of row 0 (the set-up's origin's) in the colour and the
+    /// depth store.
+    pub(crate) cbase: *mut u16,
+    pub(crate) zbase: *mut u16,
+    /// Bit 0: cull back faces; bit 1: read the rare path's flags; bit 2:
+    /// light back faces for their side; bit 3 ([`RUN_RESUME`]): go on
+    /// with the triangle the loop stopped at, its corners now lit.
+    pub(crate) mode: u32,
+    /// Set where the loop stopped at a triangle whose corners are to be
+    /// lit (its tests passed, its entries in `set_up`), else clear.
+    pub(crate) light: u32,
+    /// The triangle the loop stopped at: its [`Found`].
+    pub(crate) area: i32,
+    pub(crate) lo: u32,
+    pub(crate) hi: u32,
+    /// Triangles set up and pixels written by the loop (the pixels
+    /// saturating).
+    pub(crate) drawn: u32,
+    pub(crate) pixels: u32,
+}
+
+/// [`GouraudRun::mode`]'s bit: resume with the triangle stopped at.
+pub(crate) const RUN_RESUME: u32 = 8;
+
+/// The whole-frame loop of a cached Gouraud draw, from triangle `tris`
+/// to `end`, for the triangles the lean path takes whole: [`skip_culled`]'s
+/// scan, then for each kept triangle the tests of `Frame::triangle`
+/// (`src/triangle.rs`) and `Frame::whole` (`src/shade.rs`), and
+/// [`gouraud_set_up`]'s routine setting it up and drawing its rows.
+/// Returns the first triangle it stops at (`run.area`, `lo`, `hi` its
+/// [`Found`]): with `run.light` set, one that passed the tests and has a
+/// corner not lit for the front face (lit, the caller resumes it with
+/// [`RUN_RESUME`]); else one the tests leave to the caller: a rare
+/// corner, a box of at most 2 × 2 samples, a facing that snapping may
+/// have turned, a back face lit for its side, columns past the rect's, or
+/// one the routine leaves (more than 32 rows, a steep plane); `end` where
+/// there is none. The triangles it skips are those the caller's tests
+/// skip (culled, of no area, with no sample).
+///
+/// # Safety
+/// [`skip_culled`]'s contract; `run.set_up`'s constants as
+/// [`gouraud_set_up`] asks, `run.cbase` and `run.zbase` as its stores
+/// ask for every row of `run.rect` (`Out::row_stores`); with
+/// [`RUN_RESUME`], `tris` is the triangle the last call stopped at with
+/// `run.light` set, its corners since lit for the front face.
+#[allow(unused_variables)]
+pub(crate) unsafe fn gouraud_run(
+    run: &mut GouraudRun,
+    tris: *const [u16; 3],
+    end: *const [u16; 3],
+    cache: *const u8,
+) -> *const [u16; 3] {
+    #[cfg(fixshade_thumb2)]
+    {
+        let at: *const [u16; 3];
+        let mode = run.mode;
+        // SAFETY: the caller's contract. The loop's state is in r4, r5,
+        // r8–r11, which the set-up's routine keeps; r6 and r7, which
+        // `asm!` may not name, are pushed and popped around their use
+        // (the routine keeps them too); sp stays 8-byte aligned at its
+        // call.
+        unsafe {
+            core::arch::asm!(
+                "push {{r6, r7}}",
+                "tst r10, #{resume}",
+                "bne 21f",
+                "cmp r4, r5",
+                "beq 99f",
+                "tst r10, #2",
+                "beq 3f",
+                "1:",
+                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+                "ldr r3, [r0, #{flags}]",
+                "ldr r12, [r1, #{flags}]",
+                "orrs r3, r12",
+                "ldr r12, [r2, #{flags}]",
+                "orrs r3, r12",
+                "tst r3, #{rare}",
+                "bne 97f",
+                thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "2", "1", "99"),
+                "3:",
+                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+                thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "4", "3", "99"),
+                // Kept: its box (hi r3, lo r12), kept for the caller.
+                "8:",
+                thumb2_box!("r0", "r1", "r2", "r3", "r12"),
+                "str r11, [r9, #80]",
+                "strd r12, r3, [r9, #84]",
+                // Rows r6 ..= r7 (`Samples::of_box`); none: the next.
+                "ldrd r0, r1, [r9, #56]",
+                "asr r6, r12, #16",
+                "add r6, r6, #7",
+                "asr r6, r6, #4",
+                "cmp r6, r0",
+                "it lt",
+                "movlt r6, r0",
+                "asr r7, r3, #16",
+                "sub r7, r7, #9",
+                "asr r7, r7, #4",
+                "cmp r7, r1",
+                "it gt",
+                "movgt r7, r1",
+                "cmp r6, r7",
+                "bgt 6f",
+                // Columns: past the rect's, to the caller (a clamp); none,
+                // the next.
+                "ldrd r2, lr, [r9, #48]",
+                "sxth r0, r12",
+                "add r0, r0, #7",
+                "asr r0, r0, #4",
+                "sxth r1, r3",
+                "sub r1, r1, #8",
+                "asr r1, r1, #4",
+                "cmp r0, r2",
+                "blt 97f",
+                "cmp r1, lr",
+                "bgt 97f",
+                "subs r1, r1, r0",
+                "blt 6f",
+                // At most 2 × 2 samples: to the caller (its test of each).
+                "cmp r1, #1",
+                "bgt 5f",
+                "sub r2, r7, r6",
+                "cmp r2, #1",
+                "ble 97f",
+                "5:",
+                // A facing snapping may have turned (`snap_may_flip`):
+                // 2|a| ≤ p + p/8 + 3, p = 2(width + height).
+                "ssub16 r0, r3, r12",
+                "sxth r1, r0",
+                "add r1, r1, r0, asr #16",
+                "lsl r1, r1, #1",
+                "add r1, r1, r1, lsr #3",
+                "add r1, r1, #3",
+                "eor r2, r11, r11, asr #31",
+                "sub r2, r2, r11, asr #31",
+                "cmp r1, r2, lsl #1",
+                "bhs 97f",
+                // A back face lit for its side: to the caller.
+                "cmp r11, #0",
+                "ble 7f",
+                "tst r10, #4",
+                "bne 97f",
+                "7:",
+                // The set-up's arguments; a corner to light: to the caller.
+                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+                "stm r9, {{r0, r1, r2}}",
+                "str r11, [r9, #12]",
+                "strd r6, r7, [r9, #16]",
+                "ldr r0, [r0, #{flags}]",
+                "ldr r1, [r1, #{flags}]",
+                "ands r0, r1",
+                "ldr r2, [r2, #{flags}]",
+                "ands r0, r2",
+                "tst r0, #{front}",
+                "beq 98f",
+                "b 20f",
+                // Resumed, its corners lit.
+                "21:",
+                "ldrd r6, r7, [r9, #16]",
+                "20:",
+                // The stores' bases at the first row; set up and drawn, or
+                // to the caller.
+                "ldrd r0, r1, [r9, #64]",
+                "ldr r2, [r9, #40]",
+                "mla r0, r6, r2, r0",
+                "mla r1, r6, r2, r1",
+                "str r0, [r9, #36]",
+                "str r1, [r9, #44]",
+                "mov r0, r9",
+                "bl {set_up}",
+                "cmp r0, #0",
+                "blt 97f",
+                "ldrd r1, r2, [r9, #92]",
+                "add r1, r1, #1",
+                "adds r2, r2, r0",
+                "it cs",
+                "mvncs r2, #0",
+                "strd r1, r2, [r9, #92]",
+                // The next triangle, in the loop of the mode.
+                "6:",
+                "adds r4, #6",
+                "cmp r4, r5",
+                "beq 99f",
+                "tst r10, #2",
+                "bne 1b",
+                "b 3b",
+                "98:",
+                "movs r0, #1",
+                "str r0, [r9, #76]",
+                "b 99f",
+                "97:",
+                "movs r0, #0",
+                "str r0, [r9, #76]",
+                "99:",
+                "pop {{r6, r7}}",
+                set_up = sym fixshade_gouraud_set_up,
+                flags = const FLAGS_AT,
+                rare = const 1u32 << RARE_BIT,
+                front = const 1u32 << FRONT_BIT,
+                resume = const RUN_RESUME,
+                inout("r4") tris => at,
+                in("r5") end,
+                in("r8") cache,
+                in("r9") run as *mut GouraudRun,
+                in("r10") mode,
+                out("r11") _,
+                out("r0") _,
+                out("r1") _,
+                out("r2") _,
+                out("r3") _,
+                out("r12") _,
+                out("lr") _,
+            );
+        }
+        at
+    }
+    #[cfg(not(fixshade_thumb2))]
+    {
+        let _ = (run, tris, cache);
+        end
     }
 }
 

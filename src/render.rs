@@ -224,6 +224,14 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             // contained draw, whose every vertex the lean path keeps.
             let rare = !frame.stage.rows.contained();
             debug_assert!(rare || cache.iter().all(|v| v.rare_bits() == 0));
+            if platform::GOURAUD_RUN && M::KIND == ShadingKind::Gouraud && !frame.options.dither {
+                // SAFETY: the mesh is validated, its indices below the
+                // cache's length; `rare` as below.
+                at = unsafe {
+                    frame.gouraud_run::<M, O, D>(cache, tris, rare, out, depth, &mut stats)
+                }
+                .map_err(RenderError::Target)?;
+            }
             // SAFETY: `at ..= end` lies in `tris` (each pass moves `at` past a
             // triangle before `end`); the mesh is validated, so every index
             // is below the cache's length, `n`; without `rare`, no entry has

@@ -20,18 +20,22 @@
 //! back face. The unsnapped facing is asked only where the snapped area is
 //! small enough for snapping to have changed its sign ([`snap_may_flip`]).
 
+use core::mem::MaybeUninit;
+
 use crate::clip;
 use crate::depth::DepthTest;
 use crate::illumination::Viewer;
 use crate::light::LightSet;
 use crate::material::Specular;
+use crate::num::division::recip_nodes;
 use crate::options::{DrawStats, ShadingMode};
+use crate::planes::{Planes, Row};
 use crate::platform::{self, Found};
 use crate::setup::Samples;
 use crate::shade::{Corners, Frame};
 use crate::span::Out;
 use crate::vertex::CachedVertex;
-use crate::walk::EdgeFunctions;
+use crate::walk::{EdgeFunctions, CHUNK};
 
 impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
     /// Culls, lights and draws one triangle: mesh vertices `vertex`,
@@ -129,6 +133,105 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         };
         // SAFETY: the caller's contract: every slot indexes the cache.
         unsafe { self.whole::<M, O, D>(c, p, area, &s, out, depth, stats) }
+    }
+
+    /// The cached whole-frame loop of a Gouraud draw in its lean form
+    /// ([`platform::gouraud_run`]) where the draw's rect lies in stores
+    /// that take its rows directly (`Out::row_stores`): each triangle it
+    /// leaves drawn by [`Frame::triangle`], the loop resumed after it.
+    /// Returns where the caller's loop goes on: the end of `tris`, or the
+    /// triangle after one that left the stores' rect unfit.
+    ///
+    /// # Safety
+    /// `tris` is the validated mesh's triangles, `cache` its vertices'
+    /// entries ([`Frame::triangle`]'s contract); without `rare`, no entry
+    /// has the rare path's flag.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) unsafe fn gouraud_run<M: ShadingMode, O: Out, D: DepthTest>(
+        &self,
+        cache: &mut [CachedVertex],
+        tris: &[[u16; 3]],
+        rare: bool,
+        out: &mut O,
+        depth: &mut D,
+        stats: &mut DrawStats,
+    ) -> Result<*const [u16; 3], O::Error> {
+        let (mut at, end) = (tris.as_ptr(), tris.as_ptr_range().end);
+        let Some(first) = out.row_stores(depth, 0) else {
+            return Ok(at);
+        };
+        let mut planes = MaybeUninit::<Planes<4>>::uninit();
+        let mut table = [MaybeUninit::<Row>::uninit(); CHUNK];
+        let r = &self.rect;
+        let o = &self.options;
+        let mut run = platform::GouraudRun {
+            set_up: platform::GouraudSetUp {
+                entries: [core::ptr::null(); 3],
+                area: 0,
+                first_row: 0,
+                last_row: 0,
+                nodes: recip_nodes(),
+                planes: planes.as_mut_ptr(),
+                table: table.as_mut_ptr().cast::<Row>(),
+                cbase: core::ptr::null_mut(),
+                stride: first.stride,
+                zbase: core::ptr::null_mut(),
+            },
+            rect: [r.c0, r.c1, r.r0, r.r1],
+            cbase: first.colour,
+            zbase: first.depth,
+            mode: o.cull as u32 | (rare as u32) << 1 | (o.two_sided as u32) << 2,
+            light: 0,
+            area: 0,
+            lo: 0,
+            hi: 0,
+            drawn: 0,
+            pixels: 0,
+        };
+        loop {
+            // SAFETY: the contract above; the set-up's constants are a
+            // table of 32 rows, a slot for the planes and the reciprocals'
+            // nodes, the stores hold the rect (`row_stores`, made anew
+            // after a triangle drawn through `out`); resumed only below.
+            let next = unsafe { platform::gouraud_run(&mut run, at, end, cache.as_ptr().cast()) };
+            run.mode &= !platform::RUN_RESUME;
+            stats.drawn = stats.drawn.saturating_add(run.drawn);
+            stats.pixels = stats.pixels.saturating_add(run.pixels);
+            (run.drawn, run.pixels) = (0, 0);
+            if next == end {
+                return Ok(end);
+            }
+            // SAFETY: `next` lies in `tris`, before its end.
+            let idx = unsafe { *next }.map(usize::from);
+            // Its corners lit for the front face (`Frame::gouraud_in_one`'s
+            // order), then resumed; a corner that keeps the back's colour
+            // leaves it to `Frame::triangle`.
+            if run.light != 0
+                && idx.iter().all(|&i| {
+                    // SAFETY: the mesh is validated: its indices index the
+                    // cache.
+                    let v = unsafe { cache.get_unchecked_mut(i) };
+                    self.stage.lit_front(v, i, stats)
+                })
+            {
+                run.mode |= platform::RUN_RESUME;
+                at = next;
+                continue;
+            }
+            let found = Found {
+                area: run.area,
+                lo: run.lo,
+                hi: run.hi,
+            };
+            // SAFETY: the mesh is validated: its indices index the cache.
+            unsafe { self.triangle::<M, O, D>(cache, idx, idx, Some(found), out, depth, stats)? };
+            // SAFETY: `next` is before `end`.
+            at = unsafe { next.add(1) };
+            let Some(s) = out.row_stores(depth, 0) else {
+                return Ok(at);
+            };
+            (run.cbase, run.zbase) = (s.colour, s.depth);
+        }
     }
 
     /// Whether the unsnapped triangle faces otherwise than its snapped
