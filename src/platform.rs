@@ -1732,6 +1732,41 @@ pub(crate) struct GouraudRun {
     pub(crate) pixels: u32,
 }
 
+/// ARMv7-M, [`gouraud_run`]'s test of a box of at most 2 × 2 samples:
+/// edge `p → q` (the corners' positions at sp + `off` and the word after)
+/// at the four samples (the first's position at sp + 16, the column and
+/// row steps at sp + 20 and 24): `f = dx·(s.y − p.y) − dy·(s.x − p.x)`
+/// less 1 where the edge is neither top nor left (`(dy << 16) − dx ≥ 0`),
+/// by `smlsdx` of the packed differences, then its steps `−16·dy` and
+/// `16·dx` by `smusdx`; or-ed into r0–r3.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_sample_edge {
+    ($off:literal) => {
+        concat!(
+            "ldrd r12, lr, [sp, #", $off, "]\n",
+            "ssub16 lr, lr, r12\n",
+            "sxth r6, lr\n",
+            "asr r7, lr, #16\n",
+            "rsb r7, r6, r7, lsl #16\n",
+            "mvn r11, r7, asr #31\n",
+            "ldr r6, [sp, #16]\n",
+            "ssub16 r6, r6, r12\n",
+            "smlsdx r6, lr, r6, r11\n",
+            "orr r0, r0, r6\n",
+            "ldr r7, [sp, #20]\n",
+            "smusdx r7, lr, r7\n",
+            "add r7, r6, r7\n",
+            "orr r1, r1, r7\n",
+            "ldr r12, [sp, #24]\n",
+            "smusdx r12, lr, r12\n",
+            "add r6, r6, r12\n",
+            "orr r2, r2, r6\n",
+            "add r7, r7, r12\n",
+            "orr r3, r3, r7\n",
+        )
+    };
+}
+
 /// [`GouraudRun::mode`]'s bit: resume with the triangle stopped at.
 pub(crate) const RUN_RESUME: u32 = 8;
 
@@ -1775,6 +1810,7 @@ pub(crate) unsafe fn gouraud_run(
         unsafe {
             core::arch::asm!(
                 "push {{r6, r7}}",
+                "sub sp, #32",
                 "tst r10, #{resume}",
                 "bne 21f",
                 "cmp r4, r5",
@@ -1830,12 +1866,53 @@ pub(crate) unsafe fn gouraud_run(
                 "bgt 97f",
                 "subs r1, r1, r0",
                 "blt 6f",
-                // At most 2 × 2 samples: to the caller (its test of each).
+                // At most 2 × 2 samples: none covered (`covers_none`), the
+                // next. The samples' edge functions (`EdgeFunctions`, its
+                // corners b and c swapped for a negative area) or-ed per
+                // sample (r0–r3: the first, a column on, a row on, both),
+                // from the corners B, C, A, B, the first sample and the
+                // steps to the others at sp.
                 "cmp r1, #1",
                 "bgt 5f",
                 "sub r2, r7, r6",
                 "cmp r2, #1",
-                "ble 97f",
+                "bgt 5f",
+                "lsl r1, r1, #4",
+                "lsl r2, r2, #20",
+                "strd r1, r2, [sp, #20]",
+                "lsl r0, r0, #4",
+                "add r0, r0, #8",
+                "lsl r1, r6, #4",
+                "add r1, r1, #8",
+                "pkhbt r0, r0, r1, lsl #16",
+                "str r0, [sp, #16]",
+                "strd r6, r7, [r9, #16]",
+                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+                "ldr r0, [r0]",
+                "ldr r1, [r1]",
+                "ldr r2, [r2]",
+                "cmp r11, #0",
+                "bge 31f",
+                "mov r3, r1",
+                "mov r1, r2",
+                "mov r2, r3",
+                "31:",
+                "strd r1, r2, [sp]",
+                "strd r0, r1, [sp, #8]",
+                "movs r0, #0",
+                "movs r1, #0",
+                "movs r2, #0",
+                "movs r3, #0",
+                thumb2_sample_edge!("0"),
+                thumb2_sample_edge!("4"),
+                thumb2_sample_edge!("8"),
+                "and r0, r0, r1",
+                "and r2, r2, r3",
+                "ldrd r6, r7, [r9, #16]",
+                "ldrd r12, r3, [r9, #84]",
+                "ldr r11, [r9, #80]",
+                "ands r0, r0, r2",
+                "bmi 6f",
                 "5:",
                 // A facing snapping may have turned (`snap_may_flip`):
                 // 2|a| ≤ p + p/8 + 3, p = 2(width + height).
@@ -1906,6 +1983,7 @@ pub(crate) unsafe fn gouraud_run(
                 "movs r0, #0",
                 "str r0, [r9, #76]",
                 "99:",
+                "add sp, #32",
                 "pop {{r6, r7}}",
                 set_up = sym fixshade_gouraud_set_up,
                 flags = const FLAGS_AT,
