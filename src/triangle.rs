@@ -195,10 +195,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // after a triangle drawn through `out`); resumed only below.
             let next = unsafe { platform::gouraud_run(&mut run, at, end, cache.as_ptr().cast()) };
             run.mode &= !platform::RUN_RESUME;
-            stats.drawn = stats.drawn.saturating_add(run.drawn);
-            stats.pixels = stats.pixels.saturating_add(run.pixels);
-            (run.drawn, run.pixels) = (0, 0);
             if next == end {
+                // The loop's counts, added once (saturating additions of
+                // counts: the same sums in any order).
+                stats.drawn = stats.drawn.saturating_add(run.drawn);
+                stats.pixels = stats.pixels.saturating_add(run.pixels);
                 return Ok(end);
             }
             // SAFETY: `next` lies in `tris`, before its end.
@@ -228,6 +229,8 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // SAFETY: `next` is before `end`.
             at = unsafe { next.add(1) };
             let Some(s) = out.row_stores(depth, 0) else {
+                stats.drawn = stats.drawn.saturating_add(run.drawn);
+                stats.pixels = stats.pixels.saturating_add(run.pixels);
                 return Ok(at);
             };
             (run.cbase, run.zbase) = (s.colour, s.depth);
