@@ -1700,10 +1700,14 @@ pub(crate) const FRONT_BIT: u32 = 20;
 /// set-up ([`GOURAUD_SET_UP`]) is.
 pub(crate) const GOURAUD_RUN: bool = GOURAUD_SET_UP;
 
+/// A corner's lighting for [`gouraud_run`]: `(frame, stats, entry,
+/// vertex)` → not 0 where the entry now holds the front face's colour.
+pub(crate) type LightCorner = unsafe extern "C" fn(*const (), *mut (), *mut u8, u32) -> u32;
+
 /// What [`gouraud_run`] reads and writes. `repr(C)`: the assembly reads
 /// it at its offsets (`set_up` 0, `rect` 48, `cbase` 64, `zbase` 68,
-/// `mode` 72, `light` 76, `area` 80, `lo` 84, `hi` 88, `drawn` 92,
-/// `pixels` 96).
+/// `frame` 72, `stats` 76, `light` 80, `mode` 84, `area` 88, `lo` 92,
+/// `hi` 96, `drawn` 100, `pixels` 104).
 #[repr(C)]
 pub(crate) struct GouraudRun {
     /// The set-up's arguments: its constants (`nodes`, `planes`,
@@ -1715,13 +1719,13 @@ pub(crate) struct GouraudRun {
     /// depth store.
     pub(crate) cbase: *mut u16,
     pub(crate) zbase: *mut u16,
+    /// What `light` is given with a corner.
+    pub(crate) frame: *const (),
+    pub(crate) stats: *mut (),
+    pub(crate) light: LightCorner,
     /// Bit 0: cull back faces; bit 1: read the rare path's flags; bit 2:
-    /// light back faces for their side; bit 3 ([`RUN_RESUME`]): go on
-    /// with the triangle the loop stopped at, its corners now lit.
+    /// light back faces for their side.
     pub(crate) mode: u32,
-    /// Set where the loop stopped at a triangle whose corners are to be
-    /// lit (its tests passed, its entries in `set_up`), else clear.
-    pub(crate) light: u32,
     /// The triangle the loop stopped at: its [`Found`].
     pub(crate) area: i32,
     pub(crate) lo: u32,
@@ -1730,6 +1734,36 @@ pub(crate) struct GouraudRun {
     /// saturating).
     pub(crate) drawn: u32,
     pub(crate) pixels: u32,
+}
+
+/// ARMv7-M, [`gouraud_run`]: corner `k`'s lighting (its entry at
+/// `run.set_up.entries[k]`, its index at byte `index` of the triangle)
+/// where the entry is not lit for the front face; to the caller where it
+/// cannot be.
+#[cfg(fixshade_thumb2)]
+macro_rules! thumb2_light_corner {
+    ($k:literal, $index:literal, $lit:literal) => {
+        concat!(
+            "ldr r2, [r9, #",
+            $k,
+            "]\n",
+            "ldr r1, [r2, #{flags}]\n",
+            "tst r1, #{front}\n",
+            "bne ",
+            $lit,
+            "f\n",
+            "ldrh r3, [r4, #",
+            $index,
+            "]\n",
+            "ldrd r0, r1, [r9, #72]\n",
+            "ldr r12, [r9, #80]\n",
+            "blx r12\n",
+            "cmp r0, #0\n",
+            "beq 97f\n",
+            $lit,
+            ":\n",
+        )
+    };
 }
 
 /// ARMv7-M, [`gouraud_run`]'s test of a box of at most 2 × 2 samples:
@@ -1743,7 +1777,9 @@ pub(crate) struct GouraudRun {
 macro_rules! thumb2_sample_edge {
     ($off:literal) => {
         concat!(
-            "ldrd r12, lr, [sp, #", $off, "]\n",
+            "ldrd r12, lr, [sp, #",
+            $off,
+            "]\n",
             "ssub16 lr, lr, r12\n",
             "sxth r6, lr\n",
             "asr r7, lr, #16\n",
@@ -1767,248 +1803,247 @@ macro_rules! thumb2_sample_edge {
     };
 }
 
-/// [`GouraudRun::mode`]'s bit: resume with the triangle stopped at.
-pub(crate) const RUN_RESUME: u32 = 8;
+// ARMv7-M: `gouraud_run`'s loop, a routine of the procedure call
+// standard (`r0` the `GouraudRun`, `r1` the first triangle, `r2` the
+// end, `r3` the cache; the triangle it stops at returned in `r0`; r4–r11
+// kept), so that it may call `run.light`, compiled code. Its state in
+// r4 (the triangle), r5 (the end), r8 (the cache), r9 (the run), r10
+// (the mode), which its calls keep; a scratch of 36 bytes on the stack
+// (32 used; sp 8-byte aligned at the calls).
+#[cfg(fixshade_thumb2)]
+core::arch::global_asm!(
+    ".section .text.fixshade_gouraud_run,\"ax\",%progbits",
+    ".global fixshade_gouraud_run",
+    ".type fixshade_gouraud_run, %function",
+    ".p2align 2",
+    ".thumb_func",
+    "fixshade_gouraud_run:",
+    "push {{r4, r5, r6, r7, r8, r9, r10, r11, lr}}",
+    "sub sp, #36",
+    "mov r9, r0",
+    "mov r4, r1",
+    "mov r5, r2",
+    "mov r8, r3",
+    "ldr r10, [r9, #84]",
+    "cmp r4, r5",
+    "beq 99f",
+    "tst r10, #2",
+    "beq 3f",
+    "1:",
+    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+    "ldr r3, [r0, #{flags}]",
+    "ldr r12, [r1, #{flags}]",
+    "orrs r3, r12",
+    "ldr r12, [r2, #{flags}]",
+    "orrs r3, r12",
+    "tst r3, #{rare}",
+    "bne 97f",
+    thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "2", "1", "99"),
+    "3:",
+    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+    thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "4", "3", "99"),
+    // Kept: its box (hi r3, lo r12), kept for the caller.
+    "8:",
+    thumb2_box!("r0", "r1", "r2", "r3", "r12"),
+    "str r11, [r9, #88]",
+    "strd r12, r3, [r9, #92]",
+    // Rows r6 ..= r7 (`Samples::of_box`); none: the next.
+    "ldrd r0, r1, [r9, #56]",
+    "asr r6, r12, #16",
+    "add r6, r6, #7",
+    "asr r6, r6, #4",
+    "cmp r6, r0",
+    "it lt",
+    "movlt r6, r0",
+    "asr r7, r3, #16",
+    "sub r7, r7, #9",
+    "asr r7, r7, #4",
+    "cmp r7, r1",
+    "it gt",
+    "movgt r7, r1",
+    "cmp r6, r7",
+    "bgt 6f",
+    // Columns: past the rect's, to the caller (a clamp); none,
+    // the next.
+    "ldrd r2, lr, [r9, #48]",
+    "sxth r0, r12",
+    "add r0, r0, #7",
+    "asr r0, r0, #4",
+    "sxth r1, r3",
+    "sub r1, r1, #8",
+    "asr r1, r1, #4",
+    "cmp r0, r2",
+    "blt 97f",
+    "cmp r1, lr",
+    "bgt 97f",
+    "subs r1, r1, r0",
+    "blt 6f",
+    // At most 2 × 2 samples: none covered (`covers_none`), the
+    // next. The samples' edge functions (`EdgeFunctions`, its
+    // corners b and c swapped for a negative area) or-ed per
+    // sample (r0–r3: the first, a column on, a row on, both),
+    // from the corners B, C, A, B, the first sample and the
+    // steps to the others at sp.
+    "cmp r1, #1",
+    "bgt 5f",
+    "sub r2, r7, r6",
+    "cmp r2, #1",
+    "bgt 5f",
+    "lsl r1, r1, #4",
+    "lsl r2, r2, #20",
+    "strd r1, r2, [sp, #20]",
+    "lsl r0, r0, #4",
+    "add r0, r0, #8",
+    "lsl r1, r6, #4",
+    "add r1, r1, #8",
+    "pkhbt r0, r0, r1, lsl #16",
+    "str r0, [sp, #16]",
+    "strd r6, r7, [r9, #16]",
+    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+    "ldr r0, [r0]",
+    "ldr r1, [r1]",
+    "ldr r2, [r2]",
+    "cmp r11, #0",
+    "bge 31f",
+    "mov r3, r1",
+    "mov r1, r2",
+    "mov r2, r3",
+    "31:",
+    "strd r1, r2, [sp]",
+    "strd r0, r1, [sp, #8]",
+    "movs r0, #0",
+    "movs r1, #0",
+    "movs r2, #0",
+    "movs r3, #0",
+    thumb2_sample_edge!("0"),
+    thumb2_sample_edge!("4"),
+    thumb2_sample_edge!("8"),
+    "and r0, r0, r1",
+    "and r2, r2, r3",
+    "ldrd r6, r7, [r9, #16]",
+    "ldrd r12, r3, [r9, #92]",
+    "ldr r11, [r9, #88]",
+    "ands r0, r0, r2",
+    "bmi 6f",
+    "5:",
+    // A facing snapping may have turned (`snap_may_flip`):
+    // 2|a| ≤ p + p/8 + 3, p = 2(width + height).
+    "ssub16 r0, r3, r12",
+    "sxth r1, r0",
+    "add r1, r1, r0, asr #16",
+    "lsl r1, r1, #1",
+    "add r1, r1, r1, lsr #3",
+    "add r1, r1, #3",
+    "eor r2, r11, r11, asr #31",
+    "sub r2, r2, r11, asr #31",
+    "cmp r1, r2, lsl #1",
+    "bhs 97f",
+    // A back face lit for its side: to the caller.
+    "cmp r11, #0",
+    "ble 7f",
+    "tst r10, #4",
+    "bne 97f",
+    "7:",
+    // The set-up's arguments; its corners lit (`run.light`,
+    // as `Frame::gouraud_in_one` lights them: in order, to the
+    // caller at one that keeps the back face's colour).
+    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
+    "stm r9, {{r0, r1, r2}}",
+    "str r11, [r9, #12]",
+    "strd r6, r7, [r9, #16]",
+    "ldr r0, [r0, #{flags}]",
+    "ldr r1, [r1, #{flags}]",
+    "ands r0, r1",
+    "ldr r2, [r2, #{flags}]",
+    "ands r0, r2",
+    "tst r0, #{front}",
+    "bne 20f",
+    thumb2_light_corner!("0", "0", "11"),
+    thumb2_light_corner!("4", "2", "12"),
+    thumb2_light_corner!("8", "4", "13"),
+    "20:",
+    // The stores' bases at the first row; set up and drawn, or
+    // to the caller.
+    "ldrd r0, r1, [r9, #64]",
+    "ldr r2, [r9, #40]",
+    "mla r0, r6, r2, r0",
+    "mla r1, r6, r2, r1",
+    "str r0, [r9, #36]",
+    "str r1, [r9, #44]",
+    "mov r0, r9",
+    "bl fixshade_gouraud_set_up",
+    "cmp r0, #0",
+    "blt 97f",
+    "ldrd r1, r2, [r9, #100]",
+    "add r1, r1, #1",
+    "adds r2, r2, r0",
+    "it cs",
+    "mvncs r2, #0",
+    "strd r1, r2, [r9, #100]",
+    // The next triangle, in the loop of the mode.
+    "6:",
+    "adds r4, #6",
+    "cmp r4, r5",
+    "beq 99f",
+    "tst r10, #2",
+    "bne 1b",
+    "b 3b",
+    "97:",
+    "99:",
+    "mov r0, r4",
+    "add sp, #36",
+    "pop {{r4, r5, r6, r7, r8, r9, r10, r11, pc}}",
+    ".size fixshade_gouraud_run, . - fixshade_gouraud_run",
+    flags = const FLAGS_AT,
+    rare = const 1u32 << RARE_BIT,
+    front = const 1u32 << FRONT_BIT,
+);
+
+#[cfg(fixshade_thumb2)]
+extern "C" {
+    /// [`gouraud_run`]'s loop (the `global_asm!` above).
+    fn fixshade_gouraud_run(
+        run: *mut GouraudRun,
+        tris: *const [u16; 3],
+        end: *const [u16; 3],
+        cache: *mut u8,
+    ) -> *const [u16; 3];
+}
 
 /// The whole-frame loop of a cached Gouraud draw, from triangle `tris`
 /// to `end`, for the triangles the lean path takes whole: [`skip_culled`]'s
 /// scan, then for each kept triangle the tests of `Frame::triangle`
-/// (`src/triangle.rs`) and `Frame::whole` (`src/shade.rs`), and
-/// [`gouraud_set_up`]'s routine setting it up and drawing its rows.
-/// Returns the first triangle it stops at (`run.area`, `lo`, `hi` its
-/// [`Found`]): with `run.light` set, one that passed the tests and has a
-/// corner not lit for the front face (lit, the caller resumes it with
-/// [`RUN_RESUME`]); else one the tests leave to the caller: a rare
-/// corner, a box of at most 2 × 2 samples, a facing that snapping may
-/// have turned, a back face lit for its side, columns past the rect's, or
-/// one the routine leaves (more than 32 rows, a steep plane); `end` where
-/// there is none. The triangles it skips are those the caller's tests
-/// skip (culled, of no area, with no sample).
+/// (`src/triangle.rs`) and `Frame::whole` (`src/shade.rs`), its corners
+/// lit (`run.light`), and [`gouraud_set_up`]'s routine setting it up and
+/// drawing its rows. Returns the first triangle it leaves to the caller
+/// (`run.area`, `lo`, `hi` its [`Found`]): one with a rare corner, a box
+/// of more than 2 × 2 samples whose facing snapping may have turned or of
+/// at most 2 × 2 covering one (snapping tested the same way), a back face
+/// lit for its side, columns past the rect's, a corner that keeps the
+/// back face's colour, or one the routine leaves (more than 32 rows, a
+/// steep plane); `end` where there is none. The triangles it skips are
+/// those the caller's tests skip (culled, of no area, with no sample).
 ///
 /// # Safety
-/// [`skip_culled`]'s contract; `run.set_up`'s constants as
-/// [`gouraud_set_up`] asks, `run.cbase` and `run.zbase` as its stores
-/// ask for every row of `run.rect` (`Out::row_stores`); with
-/// [`RUN_RESUME`], `tris` is the triangle the last call stopped at with
-/// `run.light` set, its corners since lit for the front face.
+/// [`skip_culled`]'s contract, the cache writable; `run.set_up`'s
+/// constants as [`gouraud_set_up`] asks, `run.cbase` and `run.zbase` as
+/// its stores ask for every row of `run.rect` (`Out::row_stores`), and
+/// `run.light` safe to call with `run.frame`, `run.stats`, an entry of
+/// the cache and its vertex's index.
 #[allow(unused_variables)]
 pub(crate) unsafe fn gouraud_run(
     run: &mut GouraudRun,
     tris: *const [u16; 3],
     end: *const [u16; 3],
-    cache: *const u8,
+    cache: *mut u8,
 ) -> *const [u16; 3] {
     #[cfg(fixshade_thumb2)]
     {
-        let at: *const [u16; 3];
-        let mode = run.mode;
-        // SAFETY: the caller's contract. The loop's state is in r4, r5,
-        // r8–r11, which the set-up's routine keeps; r6 and r7, which
-        // `asm!` may not name, are pushed and popped around their use
-        // (the routine keeps them too); sp stays 8-byte aligned at its
-        // call.
-        unsafe {
-            core::arch::asm!(
-                "push {{r6, r7}}",
-                "sub sp, #32",
-                "tst r10, #{resume}",
-                "bne 21f",
-                "cmp r4, r5",
-                "beq 99f",
-                "tst r10, #2",
-                "beq 3f",
-                "1:",
-                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-                "ldr r3, [r0, #{flags}]",
-                "ldr r12, [r1, #{flags}]",
-                "orrs r3, r12",
-                "ldr r12, [r2, #{flags}]",
-                "orrs r3, r12",
-                "tst r3, #{rare}",
-                "bne 97f",
-                thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "2", "1", "99"),
-                "3:",
-                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-                thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "4", "3", "99"),
-                // Kept: its box (hi r3, lo r12), kept for the caller.
-                "8:",
-                thumb2_box!("r0", "r1", "r2", "r3", "r12"),
-                "str r11, [r9, #80]",
-                "strd r12, r3, [r9, #84]",
-                // Rows r6 ..= r7 (`Samples::of_box`); none: the next.
-                "ldrd r0, r1, [r9, #56]",
-                "asr r6, r12, #16",
-                "add r6, r6, #7",
-                "asr r6, r6, #4",
-                "cmp r6, r0",
-                "it lt",
-                "movlt r6, r0",
-                "asr r7, r3, #16",
-                "sub r7, r7, #9",
-                "asr r7, r7, #4",
-                "cmp r7, r1",
-                "it gt",
-                "movgt r7, r1",
-                "cmp r6, r7",
-                "bgt 6f",
-                // Columns: past the rect's, to the caller (a clamp); none,
-                // the next.
-                "ldrd r2, lr, [r9, #48]",
-                "sxth r0, r12",
-                "add r0, r0, #7",
-                "asr r0, r0, #4",
-                "sxth r1, r3",
-                "sub r1, r1, #8",
-                "asr r1, r1, #4",
-                "cmp r0, r2",
-                "blt 97f",
-                "cmp r1, lr",
-                "bgt 97f",
-                "subs r1, r1, r0",
-                "blt 6f",
-                // At most 2 × 2 samples: none covered (`covers_none`), the
-                // next. The samples' edge functions (`EdgeFunctions`, its
-                // corners b and c swapped for a negative area) or-ed per
-                // sample (r0–r3: the first, a column on, a row on, both),
-                // from the corners B, C, A, B, the first sample and the
-                // steps to the others at sp.
-                "cmp r1, #1",
-                "bgt 5f",
-                "sub r2, r7, r6",
-                "cmp r2, #1",
-                "bgt 5f",
-                "lsl r1, r1, #4",
-                "lsl r2, r2, #20",
-                "strd r1, r2, [sp, #20]",
-                "lsl r0, r0, #4",
-                "add r0, r0, #8",
-                "lsl r1, r6, #4",
-                "add r1, r1, #8",
-                "pkhbt r0, r0, r1, lsl #16",
-                "str r0, [sp, #16]",
-                "strd r6, r7, [r9, #16]",
-                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-                "ldr r0, [r0]",
-                "ldr r1, [r1]",
-                "ldr r2, [r2]",
-                "cmp r11, #0",
-                "bge 31f",
-                "mov r3, r1",
-                "mov r1, r2",
-                "mov r2, r3",
-                "31:",
-                "strd r1, r2, [sp]",
-                "strd r0, r1, [sp, #8]",
-                "movs r0, #0",
-                "movs r1, #0",
-                "movs r2, #0",
-                "movs r3, #0",
-                thumb2_sample_edge!("0"),
-                thumb2_sample_edge!("4"),
-                thumb2_sample_edge!("8"),
-                "and r0, r0, r1",
-                "and r2, r2, r3",
-                "ldrd r6, r7, [r9, #16]",
-                "ldrd r12, r3, [r9, #84]",
-                "ldr r11, [r9, #80]",
-                "ands r0, r0, r2",
-                "bmi 6f",
-                "5:",
-                // A facing snapping may have turned (`snap_may_flip`):
-                // 2|a| ≤ p + p/8 + 3, p = 2(width + height).
-                "ssub16 r0, r3, r12",
-                "sxth r1, r0",
-                "add r1, r1, r0, asr #16",
-                "lsl r1, r1, #1",
-                "add r1, r1, r1, lsr #3",
-                "add r1, r1, #3",
-                "eor r2, r11, r11, asr #31",
-                "sub r2, r2, r11, asr #31",
-                "cmp r1, r2, lsl #1",
-                "bhs 97f",
-                // A back face lit for its side: to the caller.
-                "cmp r11, #0",
-                "ble 7f",
-                "tst r10, #4",
-                "bne 97f",
-                "7:",
-                // The set-up's arguments; a corner to light: to the caller.
-                thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-                "stm r9, {{r0, r1, r2}}",
-                "str r11, [r9, #12]",
-                "strd r6, r7, [r9, #16]",
-                "ldr r0, [r0, #{flags}]",
-                "ldr r1, [r1, #{flags}]",
-                "ands r0, r1",
-                "ldr r2, [r2, #{flags}]",
-                "ands r0, r2",
-                "tst r0, #{front}",
-                "beq 98f",
-                "b 20f",
-                // Resumed, its corners lit.
-                "21:",
-                "ldrd r6, r7, [r9, #16]",
-                "20:",
-                // The stores' bases at the first row; set up and drawn, or
-                // to the caller.
-                "ldrd r0, r1, [r9, #64]",
-                "ldr r2, [r9, #40]",
-                "mla r0, r6, r2, r0",
-                "mla r1, r6, r2, r1",
-                "str r0, [r9, #36]",
-                "str r1, [r9, #44]",
-                "mov r0, r9",
-                "bl {set_up}",
-                "cmp r0, #0",
-                "blt 97f",
-                "ldrd r1, r2, [r9, #92]",
-                "add r1, r1, #1",
-                "adds r2, r2, r0",
-                "it cs",
-                "mvncs r2, #0",
-                "strd r1, r2, [r9, #92]",
-                // The next triangle, in the loop of the mode.
-                "6:",
-                "adds r4, #6",
-                "cmp r4, r5",
-                "beq 99f",
-                "tst r10, #2",
-                "bne 1b",
-                "b 3b",
-                "98:",
-                "movs r0, #1",
-                "str r0, [r9, #76]",
-                "b 99f",
-                "97:",
-                "movs r0, #0",
-                "str r0, [r9, #76]",
-                "99:",
-                "add sp, #32",
-                "pop {{r6, r7}}",
-                set_up = sym fixshade_gouraud_set_up,
-                flags = const FLAGS_AT,
-                rare = const 1u32 << RARE_BIT,
-                front = const 1u32 << FRONT_BIT,
-                resume = const RUN_RESUME,
-                inout("r4") tris => at,
-                in("r5") end,
-                in("r8") cache,
-                in("r9") run as *mut GouraudRun,
-                in("r10") mode,
-                out("r11") _,
-                out("r0") _,
-                out("r1") _,
-                out("r2") _,
-                out("r3") _,
-                out("r12") _,
-                out("lr") _,
-            );
-        }
-        at
+        // SAFETY: the caller's contract.
+        unsafe { fixshade_gouraud_run(run, tris, end, cache) }
     }
     #[cfg(not(fixshade_thumb2))]
     {
-        let _ = (run, tris, cache);
         end
     }
 }

@@ -180,8 +180,10 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             rect: [r.c0, r.c1, r.r0, r.r1],
             cbase: first.colour,
             zbase: first.depth,
+            frame: (self as *const Self).cast(),
+            stats: core::ptr::null_mut(),
+            light: Self::light_corner,
             mode: o.cull as u32 | (rare as u32) << 1 | (o.two_sided as u32) << 2,
-            light: 0,
             area: 0,
             lo: 0,
             hi: 0,
@@ -189,12 +191,16 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             pixels: 0,
         };
         loop {
+            // Made anew for each run: the triangles between write through
+            // `out`, `cache` and `stats`.
+            run.stats = (stats as *mut DrawStats).cast();
             // SAFETY: the contract above; the set-up's constants are a
             // table of 32 rows, a slot for the planes and the reciprocals'
             // nodes, the stores hold the rect (`row_stores`, made anew
-            // after a triangle drawn through `out`); resumed only below.
-            let next = unsafe { platform::gouraud_run(&mut run, at, end, cache.as_ptr().cast()) };
-            run.mode &= !platform::RUN_RESUME;
+            // after a triangle drawn through `out`), and `light_corner`
+            // is given this frame and the draw's statistics.
+            let next =
+                unsafe { platform::gouraud_run(&mut run, at, end, cache.as_mut_ptr().cast()) };
             if next == end {
                 // The loop's counts, added once (saturating additions of
                 // counts: the same sums in any order).
@@ -204,21 +210,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             }
             // SAFETY: `next` lies in `tris`, before its end.
             let idx = unsafe { *next }.map(usize::from);
-            // Its corners lit for the front face (`Frame::gouraud_in_one`'s
-            // order), then resumed; a corner that keeps the back's colour
-            // leaves it to `Frame::triangle`.
-            if run.light != 0
-                && idx.iter().all(|&i| {
-                    // SAFETY: the mesh is validated: its indices index the
-                    // cache.
-                    let v = unsafe { cache.get_unchecked_mut(i) };
-                    self.stage.lit_front(v, i, stats)
-                })
-            {
-                run.mode |= platform::RUN_RESUME;
-                at = next;
-                continue;
-            }
             let found = Found {
                 area: run.area,
                 lo: run.lo,
@@ -235,6 +226,25 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             };
             (run.cbase, run.zbase) = (s.colour, s.depth);
         }
+    }
+
+    /// [`platform::gouraud_run`]'s lighting of a corner: mesh vertex `i`,
+    /// its entry `v`, for the front face; 1 where the entry now holds that
+    /// colour ([`Stage::lit_front`](crate::vertex::Stage::lit_front)).
+    ///
+    /// # Safety
+    /// `frame` is this frame, `stats` the draw's statistics and `v` the
+    /// cache entry of vertex `i`, none of them borrowed elsewhere.
+    unsafe extern "C" fn light_corner(frame: *const (), stats: *mut (), v: *mut u8, i: u32) -> u32 {
+        // SAFETY: the contract above.
+        let (frame, stats, v) = unsafe {
+            (
+                &*frame.cast::<Self>(),
+                &mut *stats.cast::<DrawStats>(),
+                &mut *v.cast::<CachedVertex>(),
+            )
+        };
+        u32::from(frame.stage.lit_front(v, i as usize, stats))
     }
 
     /// Whether the unsnapped triangle faces otherwise than its snapped
