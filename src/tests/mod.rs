@@ -4,6 +4,7 @@
 mod coverage;
 mod normalize;
 mod public_items;
+mod row_stores;
 mod span_shaders;
 mod specular_table;
 
