@@ -3,8 +3,9 @@
 //! The rest of the crate asks named questions ([`SOFT_MUL64`],
 //! [`hardware_div32`], …) and calls named operations ([`pack_planes`],
 //! [`keep_loop_rolled`]); the `cfg`s on the target, the
-//! inline assembly and the optimisation barriers that answer them live
-//! here only. Every answer is a constant, so the branch not taken is
+//! inline assembly, the routines of assembly (`global_asm!`: the ARMv7-M
+//! row loop, Gouraud set-up and triangle loop, which call each other) and
+//! the optimisation barriers that answer them live here only. Every answer is a constant, so the branch not taken is
 //! removed at compile time and each target's code is what it would be with
 //! the `cfg` written at the call site.
 //!
@@ -595,9 +596,13 @@ extern "C" {
 /// keeps the four planes, their steps and two pointers in too few
 /// registers: the steps are reloaded at every pixel, and a row's span is
 /// wrapped in spills (the counts of that form are in
-/// `docs/PERFORMANCE_LOG.md`). The frame
-/// pointer `r7` and `r6`, which `asm!` may not name, are saved and used.
-/// Elsewhere the same loop in Rust.
+/// `docs/PERFORMANCE_LOG.md`). On ARMv7-M a routine of the procedure
+/// call standard, which [`gouraud_set_up`]'s routine calls too (27
+/// instructions a row with a span: the steps down a row copied beside
+/// the table, one pointer a span with the depth store at a fixed
+/// distance, the table's cursor in a register); on ARMv6-M inline
+/// assembly, the frame pointer `r7` and `r6`, which `asm!` may not name,
+/// saved and used. Elsewhere the same loop in Rust.
 ///
 /// [`Rows`]' offsets: `rowv` 0, `planes` 16, `dy` 20, `table` 24, `end`
 /// 28, `cbase` 32, `stride` 36, `zbase` 40, `covered` 44, `failed` 48;
@@ -808,7 +813,8 @@ fn gouraud_rows_here(run: &mut Rows) -> u32 {
 /// triangle from one to the next through memory (its corners, its
 /// walk, its planes): with the routine, S1's set-up and walk on the M4F
 /// went from 933 to 734 instructions a drawn triangle (report/firmware.md's
-/// stage table, `scripts/firmware.sh`).
+/// stage table, `scripts/firmware.sh`), before the routine drew the rows
+/// itself and [`gouraud_run`] took the triangle loop.
 pub(crate) const GOURAUD_SET_UP: bool = cfg!(fixshade_thumb2);
 
 /// What [`gouraud_set_up`] reads and writes: a kept triangle's three
@@ -1326,15 +1332,15 @@ extern "C" {
 /// plane too steep for the 32-bit gradients (the exact quotients'). The
 /// caller has ruled out rows whose spans need a clamp.
 ///
-/// On ARMv7-M one block of assembly, the triangle's values in registers
-/// from stage to stage: the corners sorted, the walk's edges by `sdiv`
-/// (each of five words, the two or three of a triangle in a scratch of 72
-/// bytes on the stack), 14 instructions a row (each edge's remainder kept
-/// less its divisor, the carry tested by the add's sign), the reciprocal
-/// and the four
-/// `Λ`, 30 instructions an attribute's plane besides its values' loads. `r6` and `r7`, which `asm!`
-/// may not name, are pushed and popped; sp is restored. Elsewhere `None`:
-/// [`GOURAUD_SET_UP`] is false there and the caller does not ask.
+/// On ARMv7-M one routine of assembly (of the procedure call standard,
+/// which [`gouraud_run`]'s loop calls too), the triangle's values in
+/// registers from stage to stage: the corners sorted, the walk's edges by
+/// `sdiv` (each of five words, the two or three of a triangle in a scratch
+/// on the stack), 14 instructions a row (each edge's remainder kept less
+/// its divisor, the carry tested by the add's sign), the reciprocal and
+/// the four `Λ`, 30 instructions an attribute's plane besides its values'
+/// loads. Elsewhere `None`: [`GOURAUD_SET_UP`] is false there and the
+/// caller does not ask.
 ///
 /// # Safety
 /// The entries are readable 16-byte cache entries of kept vertices (window

@@ -9,7 +9,10 @@
 //! The lean path draws the triangle whole
 //! ([`Frame::whole`](crate::shade::Frame::whole)), the rare path what
 //! clipping leaves of it ([`Frame::pieces`](crate::shade::Frame::pieces));
-//! both end in the set-up and the walk.
+//! both end in the set-up and the walk. On ARMv7-M a cached Gouraud draw
+//! into stores that hold its rows runs the lean path's whole triangle
+//! loop in one routine of assembly ([`Frame::gouraud_run`]), which leaves
+//! to [`Frame::triangle`] each triangle its tests do not take.
 //!
 //! # Facing
 //! A triangle faces the way its unsnapped window positions do. One that
