@@ -210,7 +210,10 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         let Some(frame) = self.frame(mesh, size)? else {
             return Ok(stats);
         };
-        out.fit_rows(depth, &frame.rect);
+        // Asked only where a routine takes the stores' rows directly.
+        if platform::GOURAUD_SET_UP {
+            out.fit_rows(depth, &frame.rect);
+        }
         let cache = &mut cache[..if X::CACHED { n } else { 0 }];
         if X::CACHED {
             frame.stage.project_all(cache);

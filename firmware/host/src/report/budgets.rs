@@ -57,7 +57,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
     .any(|k| f.contains(k))
     {
         1
-    } else if f.contains("::draw_framebuffer") {
+    } else if f.contains("::draw_framebuffer") || f.contains("gouraud_run") {
         if c > d {
             2
         } else if draw {
@@ -65,7 +65,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         } else {
             3
         }
-    } else if f.contains("Frame<S,V,L>::draw") || f.contains("gouraud_depth_rows") {
+    } else if f.contains("Frame<S,V,L>::draw") || is_row_loop(f) {
         if c >= p {
             5
         } else if c > 2 * d {
@@ -75,7 +75,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         } else {
             3
         }
-    } else if (f.contains("setup::set_up") || f.contains("::gouraud_in_one")) && c > 4 * d {
+    } else if (f.contains("setup::set_up") || f.contains("gouraud_set_up")) && c > 4 * d {
         // The walk's rows, stepped inside the set-up (the M4F's in its
         // one routine of assembly): more often than a triangle's four
         // attributes (depth and three colours).
@@ -87,6 +87,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         "Rows::fine",
         "clip::",
         "::gouraud_in_one",
+        "gouraud_set_up",
     ]
     .iter()
     .any(|k| f.contains(k))
@@ -99,6 +100,12 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
     } else {
         6
     }
+}
+
+/// Whether linked function `f` is the Gouraud row loop: the M0+'s
+/// `gouraud_depth_rows`, the M4F's routine `fixshade_gouraud_rows`.
+fn is_row_loop(f: &str) -> bool {
+    f.contains("gouraud_depth_rows") || f.contains("fixshade_gouraud_rows")
 }
 
 /// Instructions per stage of a kept profile (`dir`: `byaddr.txt`, "0xADDR
@@ -135,7 +142,7 @@ fn per_stage(dir: &Path, f: &Frame) -> Result<([u64; 8], u64), String> {
     };
     let rows = counts
         .iter()
-        .filter(|(a, c)| name(*a).contains("gouraud_depth_rows") && *c < f.pixels)
+        .filter(|(a, c)| is_row_loop(name(*a)) && *c < f.pixels)
         .map(|(_, c)| *c)
         .max()
         .ok_or("no row loop in the profile")?;
@@ -176,13 +183,15 @@ pub(super) fn stage_table(
         "S1 by stage, beside the stage budgets: each instruction of the per-address profile \
          (below) goes to the stage of the linked function it lies in (`project_all`: vertex; \
          the lighting functions; library routines apart); in the triangle loop \
-         (`draw_framebuffer`) what ran more often than once a triangle set up is the cull and \
-         reject, what ran less often is the set-up's; in the walk (`Frame::draw`) and the row \
-         loop (`gouraud_depth_rows`) what ran once a pixel is per pixel, what ran more often \
+         (`draw_framebuffer`, and on the M4F `gouraud_run`, the lean triangle loop in one \
+         routine of assembly with its Rust caller) what ran more often than once a triangle \
+         set up is the cull and reject, what ran less often is the set-up's; in the walk \
+         (`Frame::draw`) and the row loop (`gouraud_depth_rows`, on the M4F the routine \
+         `fixshade_gouraud_rows`) what ran once a pixel is per pixel, what ran more often \
          than twice a triangle set up per row ({rows4} rows: the most any instruction of the \
          row loop ran, short of the pixels), else the set-up's; in the set-up (`set_up`, \
-         which walks the rows of most triangles, and on the M4F `gouraud_in_one`, the \
-         Gouraud set-up in one routine of assembly with its call of the row loop) what ran \
+         which walks the rows of most triangles, and on the M4F `fixshade_gouraud_set_up`, \
+         the Gouraud set-up in one routine of assembly, which calls the row loop) what ran \
          more often than four times a triangle set up (its attributes) per row; the edges' quotients found by steps \
          (`walk::Edge::stepped`, out of line) are the set-up's; what ran fewer times than a \
          quarter of the triangles set up, anywhere, is the draw's own. The library routines' \
