@@ -49,6 +49,7 @@ fn stage(f: &str, c: u64, d: u64, p: u64) -> usize {
         0
     } else if [
         "Stage<S,V,L>::light",
+        "::light_corner",
         "Lighting<S,V,L>::shade",
         "normalize::",
         "specular_table::",
@@ -182,7 +183,8 @@ pub(super) fn stage_table(
         md,
         "S1 by stage, beside the stage budgets: each instruction of the per-address profile \
          (below) goes to the stage of the linked function it lies in (`project_all`: vertex; \
-         the lighting functions; library routines apart); in the triangle loop \
+         the lighting functions, with the M4F triangle loop's call of them, `light_corner`; \
+         library routines apart); in the triangle loop \
          (`draw_framebuffer`, and on the M4F `gouraud_run`, the lean triangle loop in one \
          routine of assembly with its Rust caller) what ran more often than once a triangle \
          set up is the cull and reject, what ran less often is the set-up's; in the walk \
