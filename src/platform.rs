@@ -844,6 +844,23 @@ pub(crate) struct GouraudSetUp {
     pub(crate) zbase: *mut u16,
 }
 
+/// ARMv7-M, [`gouraud_set_up`]'s sort of the corners: corners `a` and
+/// `b` swapped, and their `y`s `ya` and `yb`, through r12.
+#[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
+macro_rules! thumb2_swap_corners {
+    ($a:literal, $b:literal, $ya:literal, $yb:literal) => {
+        concat!(
+            "mov r12, ", $a, "\n",
+            "mov ", $a, ", ", $b, "\n",
+            "mov ", $b, ", r12\n",
+            "mov r12, ", $ya, "\n",
+            "mov ", $ya, ", ", $yb, "\n",
+            "mov ", $yb, ", r12\n",
+        )
+    };
+}
+
 /// ARMv7-M, [`gouraud_set_up`]: the edge from the packed position in r1
 /// down to the one in r2 at sample row r0 (`walk::Edge::new` with a
 /// hardware division: `q = ⌈⌈n/16⌉/dy⌉`, `step = ⌈dx/dy⌉`, each ceiling
@@ -1022,30 +1039,15 @@ core::arch::global_asm!(
     "asr r9, r4, #16",
     "cmp r9, r8",
     "bge 1f",
-    "mov r12, r3",
-    "mov r3, r4",
-    "mov r4, r12",
-    "mov r12, r8",
-    "mov r8, r9",
-    "mov r9, r12",
+    thumb2_swap_corners!("r3", "r4", "r8", "r9"),
     "1:",
     "asr r10, r5, #16",
     "cmp r10, r9",
     "bge 2f",
-    "mov r12, r4",
-    "mov r4, r5",
-    "mov r5, r12",
-    "mov r12, r9",
-    "mov r9, r10",
-    "mov r10, r12",
+    thumb2_swap_corners!("r4", "r5", "r9", "r10"),
     "cmp r9, r8",
     "bge 2f",
-    "mov r12, r3",
-    "mov r3, r4",
-    "mov r4, r12",
-    "mov r12, r8",
-    "mov r8, r9",
-    "mov r9, r12",
+    thumb2_swap_corners!("r3", "r4", "r8", "r9"),
     "2:",
     "str r3, [sp, #12]",
     "strd r4, r5, [sp, #4]",
@@ -1384,45 +1386,16 @@ pub(crate) const RARE_BIT: u32 = 22;
 /// `a`, `b`, `c`, entries of 16 bytes from `base` (each argument a
 /// register's name or an operand's `{…}`).
 #[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
 macro_rules! thumb2_entries {
     ($a:literal, $b:literal, $c:literal, $p:literal, $base:literal) => {
         concat!(
-            "ldrh ",
-            $a,
-            ", [",
-            $p,
-            "]\n",
-            "ldrh ",
-            $b,
-            ", [",
-            $p,
-            ", #2]\n",
-            "ldrh ",
-            $c,
-            ", [",
-            $p,
-            ", #4]\n",
-            "add ",
-            $a,
-            ", ",
-            $base,
-            ", ",
-            $a,
-            ", lsl #4\n",
-            "add ",
-            $b,
-            ", ",
-            $base,
-            ", ",
-            $b,
-            ", lsl #4\n",
-            "add ",
-            $c,
-            ", ",
-            $base,
-            ", ",
-            $c,
-            ", lsl #4\n",
+            "ldrh ", $a, ", [", $p, "]\n",
+            "ldrh ", $b, ", [", $p, ", #2]\n",
+            "ldrh ", $c, ", [", $p, ", #4]\n",
+            "add ", $a, ", ", $base, ", ", $a, ", lsl #4\n",
+            "add ", $b, ", ", $base, ", ", $b, ", lsl #4\n",
+            "add ", $c, ", ", $base, ", ", $c, ", lsl #4\n",
         )
     };
 }
@@ -1434,15 +1407,27 @@ macro_rules! thumb2_entries {
 /// the local label stepping `p`; `head`, its loop's) or to `done` at
 /// `end`. Bit 0 of `mode`: cull back faces.
 #[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
 macro_rules! thumb2_area_next {
     ($a:literal, $b:literal, $c:literal, $area:literal, $mode:literal, $p:literal,
      $end:literal, $skip:literal, $head:literal, $done:literal) => {
         concat!(
-            "ldr ", $a, ", [", $a, "]\n", "ldr ", $b, ", [", $b, "]\n", "ldr ", $c, ", [", $c,
-            "]\n", "ssub16 ", $b, ", ", $b, ", ", $a, "\n", "ssub16 ", $c, ", ", $c, ", ", $a,
-            "\n", "smusdx ", $area, ", ", $b, ", ", $c, "\n", "cmp ", $area, ", #0\n", "blt 8f\n",
-            "beq ", $skip, "f\n", "tst ", $mode, ", #1\n", "beq 8f\n", $skip, ":\n", "adds ", $p,
-            ", #6\n", "cmp ", $p, ", ", $end, "\n", "bne ", $head, "b\n", "b ", $done, "f\n",
+            "ldr ", $a, ", [", $a, "]\n",
+            "ldr ", $b, ", [", $b, "]\n",
+            "ldr ", $c, ", [", $c, "]\n",
+            "ssub16 ", $b, ", ", $b, ", ", $a, "\n",
+            "ssub16 ", $c, ", ", $c, ", ", $a, "\n",
+            "smusdx ", $area, ", ", $b, ", ", $c, "\n",
+            "cmp ", $area, ", #0\n",
+            "blt 8f\n",
+            "beq ", $skip, "f\n",
+            "tst ", $mode, ", #1\n",
+            "beq 8f\n",
+            $skip, ":\n",
+            "adds ", $p, ", #6\n",
+            "cmp ", $p, ", ", $end, "\n",
+            "bne ", $head, "b\n",
+            "b ", $done, "f\n",
         )
     };
 }
@@ -1454,14 +1439,57 @@ macro_rules! thumb2_area_next {
 /// (differences within ±2¹⁵ in the guard band): the greatest corner into
 /// `hi`, the least into `lo`; `b` and `c` changed.
 #[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
 macro_rules! thumb2_box {
     ($a:literal, $b:literal, $c:literal, $hi:literal, $lo:literal) => {
         concat!(
-            "ssub16 ", $hi, ", ", $b, ", ", $c, "\n", "sel ", $hi, ", ", $b, ", ", $c, "\n",
-            "sel ", $lo, ", ", $c, ", ", $b, "\n", "mov ", $c, ", #0\n", "ssub16 ", $b, ", ", $hi,
-            ", ", $c, "\n", "sel ", $hi, ", ", $hi, ", ", $c, "\n", "ssub16 ", $b, ", ", $lo, ", ",
-            $c, "\n", "sel ", $lo, ", ", $c, ", ", $lo, "\n", "sadd16 ", $lo, ", ", $a, ", ", $lo,
-            "\n", "sadd16 ", $hi, ", ", $a, ", ", $hi, "\n",
+            "ssub16 ", $hi, ", ", $b, ", ", $c, "\n",
+            "sel ", $hi, ", ", $b, ", ", $c, "\n",
+            "sel ", $lo, ", ", $c, ", ", $b, "\n",
+            "mov ", $c, ", #0\n",
+            "ssub16 ", $b, ", ", $hi, ", ", $c, "\n",
+            "sel ", $hi, ", ", $hi, ", ", $c, "\n",
+            "ssub16 ", $b, ", ", $lo, ", ", $c, "\n",
+            "sel ", $lo, ", ", $c, ", ", $lo, "\n",
+            "sadd16 ", $lo, ", ", $a, ", ", $lo, "\n",
+            "sadd16 ", $hi, ", ", $a, ", ", $hi, "\n",
+        )
+    };
+}
+
+/// ARMv7-M, [`skip_culled`]'s and [`gouraud_run`]'s scan from the
+/// triangle at `p` to `end` (`done` there, a local label): with bit 1 of
+/// `mode` the entries' flags read (a triangle with a rare corner to
+/// `rare`, a local label), a loop of its own without; a kept triangle's
+/// area in `area` and its box in `t` (the greatest corner) and `u` (the
+/// least, [`thumb2_box`]) at label 8; the entry registers are changed; the
+/// block's operands `flags` and `rare` name the flags word and the flag.
+#[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
+macro_rules! thumb2_scan {
+    ($a:literal, $b:literal, $c:literal, $t:literal, $u:literal, $area:literal,
+     $mode:literal, $p:literal, $end:literal, $base:literal, $rare:literal, $done:literal) => {
+        concat!(
+            "cmp ", $p, ", ", $end, "\n",
+            "beq ", $done, "f\n",
+            "tst ", $mode, ", #2\n",
+            "beq 3f\n",
+            "1:\n",
+            thumb2_entries!($a, $b, $c, $p, $base),
+            "ldr ", $t, ", [", $a, ", #{flags}]\n",
+            "ldr ", $u, ", [", $b, ", #{flags}]\n",
+            "orrs ", $t, ", ", $u, "\n",
+            "ldr ", $u, ", [", $c, ", #{flags}]\n",
+            "orrs ", $t, ", ", $u, "\n",
+            "tst ", $t, ", #{rare}\n",
+            "bne ", $rare, "f\n",
+            thumb2_area_next!($a, $b, $c, $area, $mode, $p, $end, "2", "1", $done),
+            // The same without the flags.
+            "3:\n",
+            thumb2_entries!($a, $b, $c, $p, $base),
+            thumb2_area_next!($a, $b, $c, $area, $mode, $p, $end, "4", "3", $done),
+            "8:\n",
+            thumb2_box!($a, $b, $c, $t, $u),
         )
     };
 }
@@ -1592,27 +1620,10 @@ pub(crate) unsafe fn skip_culled(
         // word; it stops at `end`.
         unsafe {
             core::arch::asm!(
-                "cmp {p}, {end}",
-                "beq 9f",
-                "tst {mode}, #2",
-                "beq 3f",
-                "1:",
-                thumb2_entries!("{a}", "{b}", "{c}", "{p}", "{base}"),
-                "ldr {t}, [{a}, #{flags}]",
-                "ldr {u}, [{b}, #{flags}]",
-                "orrs {t}, {u}",
-                "ldr {u}, [{c}, #{flags}]",
-                "orrs {t}, {u}",
-                "tst {t}, #{rare}",
-                "bne 9f",
-                thumb2_area_next!("{a}", "{b}", "{c}", "{area}", "{mode}", "{p}", "{end}", "2", "1", "9"),
-                // The same without the flags.
-                "3:",
-                thumb2_entries!("{a}", "{b}", "{c}", "{p}", "{base}"),
-                thumb2_area_next!("{a}", "{b}", "{c}", "{area}", "{mode}", "{p}", "{end}", "4", "3", "9"),
-                // A kept triangle's box.
-                "8:",
-                thumb2_box!("{a}", "{b}", "{c}", "{t}", "{u}"),
+                thumb2_scan!(
+                    "{a}", "{b}", "{c}", "{t}", "{u}", "{area}", "{mode}", "{p}", "{end}", "{base}",
+                    "9", "9"
+                ),
                 "9:",
                 p = inout(reg) tris => at,
                 end = in(reg) end,
@@ -1781,12 +1792,11 @@ macro_rules! thumb2_light_corner {
 /// by `smlsdx` of the packed differences, then its steps `−16·dy` and
 /// `16·dx` by `smusdx`; or-ed into r0–r3.
 #[cfg(fixshade_thumb2)]
+#[rustfmt::skip]
 macro_rules! thumb2_sample_edge {
     ($off:literal) => {
         concat!(
-            "ldrd r12, lr, [sp, #",
-            $off,
-            "]\n",
+            "ldrd r12, lr, [sp, #", $off, "]\n",
             "ssub16 lr, lr, r12\n",
             "sxth r6, lr\n",
             "asr r7, lr, #16\n",
@@ -1832,26 +1842,9 @@ core::arch::global_asm!(
     "mov r5, r2",
     "mov r8, r3",
     "ldr r10, [r9, #84]",
-    "cmp r4, r5",
-    "beq 99f",
-    "tst r10, #2",
-    "beq 3f",
-    "1:",
-    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-    "ldr r3, [r0, #{flags}]",
-    "ldr r12, [r1, #{flags}]",
-    "orrs r3, r12",
-    "ldr r12, [r2, #{flags}]",
-    "orrs r3, r12",
-    "tst r3, #{rare}",
-    "bne 97f",
-    thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "2", "1", "99"),
-    "3:",
-    thumb2_entries!("r0", "r1", "r2", "r4", "r8"),
-    thumb2_area_next!("r0", "r1", "r2", "r11", "r10", "r4", "r5", "4", "3", "99"),
-    // Kept: its box (hi r3, lo r12), kept for the caller.
-    "8:",
-    thumb2_box!("r0", "r1", "r2", "r3", "r12"),
+    // The scan; a kept triangle's box (hi r3, lo r12), kept for the
+    // caller.
+    thumb2_scan!("r0", "r1", "r2", "r3", "r12", "r11", "r10", "r4", "r5", "r8", "97", "99"),
     "str r11, [r9, #88]",
     "strd r12, r3, [r9, #92]",
     // Rows r6 ..= r7 (`Samples::of_box`); none: the next.
