@@ -160,7 +160,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         stats: &mut DrawStats,
     ) -> Result<*const [u16; 3], O::Error> {
         let (mut at, end) = (tris.as_ptr(), tris.as_ptr_range().end);
-        let Some(first) = out.row_stores(depth, 0) else {
+        // Nothing done where there is no routine (the caller's loop then
+        // takes every triangle) or no stores to hand it.
+        let Some(first) = out.row_stores(depth, 0).filter(|_| platform::GOURAUD_RUN) else {
             return Ok(at);
         };
         let mut planes = MaybeUninit::<Planes<4>>::uninit();
@@ -193,7 +195,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             drawn: 0,
             pixels: 0,
         };
-        loop {
+        let resume = loop {
             // Made anew for each run: the triangles between write through
             // `out`, `cache` and `stats`.
             run.stats = (stats as *mut DrawStats).cast();
@@ -205,11 +207,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             let next =
                 unsafe { platform::gouraud_run(&mut run, at, end, cache.as_mut_ptr().cast()) };
             if next == end {
-                // The loop's counts, added once (saturating additions of
-                // counts: the same sums in any order).
-                stats.drawn = stats.drawn.saturating_add(run.drawn);
-                stats.pixels = stats.pixels.saturating_add(run.pixels);
-                return Ok(end);
+                break end;
             }
             // SAFETY: `next` lies in `tris`, before its end.
             let idx = unsafe { *next }.map(usize::from);
@@ -223,12 +221,15 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
             // SAFETY: `next` is before `end`.
             at = unsafe { next.add(1) };
             let Some(s) = out.row_stores(depth, 0) else {
-                stats.drawn = stats.drawn.saturating_add(run.drawn);
-                stats.pixels = stats.pixels.saturating_add(run.pixels);
-                return Ok(at);
+                break at;
             };
             (run.cbase, run.zbase) = (s.colour, s.depth);
-        }
+        };
+        // The loop's counts, added once (saturating additions of counts:
+        // the same sums in any order).
+        stats.drawn = stats.drawn.saturating_add(run.drawn);
+        stats.pixels = stats.pixels.saturating_add(run.pixels);
+        Ok(resume)
     }
 
     /// [`platform::gouraud_run`]'s lighting of a corner: mesh vertex `i`,
