@@ -297,6 +297,7 @@ fn cut(poly: &mut [Corner; MAX_CORNERS], n: usize, p: &Plane, e: &[i32; 4], wind
 /// is pixel `centre` from the set-up's origin, on `rect` (pixels from that
 /// centre).
 #[allow(clippy::too_many_arguments)]
+#[inline(never)]
 fn draw_polygon<M, O, D, S, V, L>(
     f: &Frame<'_, '_, S, V, L>,
     c: &mut Corners,

@@ -621,6 +621,116 @@ pub(crate) fn gouraud_depth_rows(run: &mut Rows) -> u32 {
     }
 }
 
+/// Whether [`edge_rows`] steps a walk's edges here (ARMv6-M); elsewhere
+/// the walk's Rust loop does.
+pub(crate) const EDGE_ROWS: bool = cfg!(fixshade_thumb1);
+
+/// The walk's spans between two edges for `n` rows from `rows` on, each
+/// `x0` the left edge's column and `n` the right's less it, both edges
+/// stepped a row after each (`walk::Edge`'s step: `q += step`, `rem +=
+/// rstep`, then one carry where `rem ≥ d`). Each edge is given as its
+/// `[q, rem, d, step, rstep]`; returned are both edges' `q` and `rem`
+/// stepped past the rows (left, then right). On ARMv6-M inline assembly,
+/// the edges in registers: the remainders kept less their divisors, so
+/// that the carry's test is a sign, the steps and the negated divisors in
+/// r8–r12 and lr; 13 instructions a row without a carry (compiled, the
+/// ten words did not fit the low registers: 33). Elsewhere the edges as
+/// given ([`EDGE_ROWS`] is false and the caller does not ask).
+///
+/// # Safety
+/// `rows` is valid for `n` writes of [`Row`]; `0 ≤ rem < d` and every
+/// row's sums lie within `i32` (`walk::Edge`'s ranges).
+#[inline(always)]
+pub(crate) unsafe fn edge_rows(rows: *mut Row, n: usize, l: [i32; 5], r: [i32; 5]) -> [i32; 4] {
+    #[cfg(fixshade_thumb1)]
+    {
+        let [mut lq, mut lrem, ld, lstep, lrstep] = l;
+        let [mut rq, mut rrem, rd, rstep, rrstep] = r;
+        // What the loop keeps in high registers (which Thumb-1 `asm!` may
+        // not take as operands): the end, then each edge's divisor and
+        // steps.
+        let rest = [
+            rows.wrapping_add(n) as i32,
+            ld,
+            lstep,
+            lrstep,
+            rd,
+            rstep,
+            rrstep,
+        ];
+        // SAFETY: the caller's contract; r6 and r7, which `asm!` may not
+        // name, are pushed and popped around their use; sp is restored.
+        unsafe {
+            core::arch::asm!(
+                "push {{r6, r7}}",
+                "ldm r3!, {{r6, r7}}",
+                // −d of each edge into r10 and lr; each remainder less its d.
+                "rsbs r7, r7, #0",
+                "mov r10, r7",
+                "add r2, r10",
+                "ldm r3!, {{r7}}",
+                "mov r8, r7",
+                "ldm r3!, {{r7}}",
+                "mov r9, r7",
+                "ldm r3!, {{r7}}",
+                "rsbs r7, r7, #0",
+                "mov lr, r7",
+                "add r5, lr",
+                "ldm r3!, {{r7}}",
+                "mov r11, r7",
+                "ldr r7, [r3]",
+                "mov r12, r7",
+                "cmp r0, r6",
+                "beq 4f",
+                "1:",
+                "subs r3, r4, r1",
+                "stm r0!, {{r1, r3}}",
+                "add r1, r8",
+                "add r2, r9",
+                "cmp r2, #0",
+                "blt 2f",
+                "add r2, r10",
+                "subs r1, #1",
+                "2:",
+                "add r4, r11",
+                "add r5, r12",
+                "cmp r5, #0",
+                "blt 3f",
+                "add r5, lr",
+                "subs r4, #1",
+                "3:",
+                "cmp r0, r6",
+                "bne 1b",
+                "4:",
+                // The remainders with their divisors added back.
+                "mov r7, r10",
+                "subs r2, r2, r7",
+                "mov r7, lr",
+                "subs r5, r5, r7",
+                "pop {{r6, r7}}",
+                inout("r0") rows => _,
+                inout("r1") lq,
+                inout("r2") lrem,
+                inout("r3") rest.as_ptr() => _,
+                inout("r4") rq,
+                inout("r5") rrem,
+                out("r8") _,
+                out("r9") _,
+                out("r10") _,
+                out("r11") _,
+                out("r12") _,
+                out("lr") _,
+            );
+        }
+        [lq, lrem, rq, rrem]
+    }
+    #[cfg(not(fixshade_thumb1))]
+    {
+        let _ = (rows, n);
+        [l[0], l[1], r[0], r[1]]
+    }
+}
+
 /// [`gouraud_depth_rows`] where it is not a routine of its own: inline
 /// assembly on ARMv6-M, Rust elsewhere.
 #[cfg(not(fixshade_thumb2))]

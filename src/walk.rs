@@ -295,9 +295,28 @@ impl<const N: usize> Span<'_, N> {
 }
 
 /// The spans of `rows.len()` rows between edges `l` and `r`, unclamped,
-/// into `rows`; returns the edges stepped past them.
+/// into `rows`; returns the edges stepped past them. Where the platform
+/// steps edges itself ([`platform::edge_rows`]), there: most triangles'
+/// rows ([`Walk::all`]).
 #[inline(always)]
 fn segment(rows: &mut [MaybeUninit<Row>], mut l: Edge, mut r: Edge) -> (Edge, Edge) {
+    if platform::EDGE_ROWS {
+        let e = |e: &Edge| [e.q, e.rem, e.d, e.step, e.rstep];
+        // SAFETY: `rows` holds `rows.len()` rows; the edges have the
+        // walk's ranges.
+        let [lq, lrem, rq, rrem] =
+            unsafe { platform::edge_rows(rows.as_mut_ptr().cast(), rows.len(), e(&l), e(&r)) };
+        (l.q, l.rem, r.q, r.rem) = (lq, lrem, rq, rrem);
+        return (l, r);
+    }
+    segment_here(rows, l, r)
+}
+
+/// [`segment`] in Rust: also a long or clamped walk's, table by table
+/// ([`Walk::fill`], rare: the routine inlined there had cost the triangle
+/// loop's own code registers).
+#[inline(always)]
+fn segment_here(rows: &mut [MaybeUninit<Row>], mut l: Edge, mut r: Edge) -> (Edge, Edge) {
     for row in rows {
         row.write(Row {
             x0: l.q,
@@ -349,7 +368,7 @@ impl Walk {
                     platform::keep_loop_rolled();
                 }
             } else {
-                (l, r) = segment(out, l, r);
+                (l, r) = segment_here(out, l, r);
             }
             (self.left, self.right, self.y) = (l, r, stop);
             k += m;
