@@ -16,6 +16,13 @@
 //! [`platform`] writes in assembly (stable Rust's `cfg` has no
 //! `target_feature` that tells them apart).
 //!
+//! With `FIXSHADE_LIMBS=1` in the environment it sets
+//! `fixshade_soft_mul64` and `fixshade_soft_div32` on any target: the
+//! Cortex-M0's arithmetic on the host, for the test suite (`.ci/run`). The
+//! same as `RUSTFLAGS="--cfg fixshade_soft_mul64 --cfg
+//! fixshade_soft_div32"`, but for this crate alone, so that its
+//! dependencies are not built again.
+//!
 //! The kernel reads them only through [`platform`].
 //!
 //! [`widening`]: src/num/widening.rs
@@ -28,15 +35,20 @@ fn main() {
     println!("cargo:rustc-check-cfg=cfg(fixshade_thumb1)");
     println!("cargo:rustc-check-cfg=cfg(fixshade_thumb2)");
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-env-changed=FIXSHADE_LIMBS");
+    let limbs = std::env::var("FIXSHADE_LIMBS").is_ok_and(|v| v == "1");
     let target = std::env::var("TARGET").unwrap_or_default();
-    if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
+    let thumb1 = target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base");
+    if thumb1 || limbs {
         println!("cargo:rustc-cfg=fixshade_soft_mul64");
+    }
+    if thumb1 {
         println!("cargo:rustc-cfg=fixshade_thumb1");
     }
     if target.starts_with("thumbv7") || target.starts_with("thumbv8m.main") {
         println!("cargo:rustc-cfg=fixshade_thumb2");
     }
-    if target.starts_with("thumbv6m") {
+    if target.starts_with("thumbv6m") || limbs {
         println!("cargo:rustc-cfg=fixshade_soft_div32");
     }
 }

@@ -11,8 +11,9 @@
 //!
 //! The frames do not depend on any of these choices: each names two forms
 //! of the same values (unit tests hold the forms to each other, and CI runs
-//! the test suite on the host with `--cfg fixshade_soft_mul64 --cfg
-//! fixshade_soft_div32`); only the instructions differ.
+//! the test suite on the host with `fixshade_soft_mul64` and
+//! `fixshade_soft_div32` set, `FIXSHADE_LIMBS=1`: `build.rs`); only the
+//! instructions differ.
 
 use crate::planes::{Planes, Row};
 
