@@ -64,7 +64,6 @@ use crate::light::LightSet;
 use crate::material::Specular;
 use crate::mesh::Mesh;
 use crate::options::{check_bounds, DrawStats, RenderError, ShadingKind, ShadingMode};
-use crate::platform;
 use crate::render::Prepared;
 use crate::shade::Frame;
 use crate::span::{Memory, Out};
@@ -411,9 +410,7 @@ impl Job<'_, '_> {
                 return Err(RenderError::DepthTooSmall);
             }
             let mut out = Memory::new(&mut bands.colour[..npx], w, y0, frame.origin);
-            if platform::GOURAUD_SET_UP {
-                out.fit_rows(depth, &frame.rect);
-            }
+            out.fit_rows(depth, &frame.rect);
             for (r, &(lo, hi)) in self.bounds.iter().enumerate() {
                 if hi < b0 || lo > b1 {
                     continue;

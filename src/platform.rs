@@ -482,6 +482,36 @@ impl<'a> Rows<'a> {
             _stores: core::marker::PhantomData,
         }
     }
+
+    /// [`Rows::new`] from the stores' column 0 of the first row, `colour`
+    /// and `depth`, and the bytes from a row to the next.
+    ///
+    /// # Safety
+    /// Every row's span, at `colour` and `depth` moved `stride` bytes a
+    /// row, lies in a store valid for writes for `'a`, and `planes` and
+    /// `table` live that long.
+    pub(crate) unsafe fn at(
+        planes: &'a Planes<4>,
+        dy: i32,
+        table: &'a [Row],
+        colour: *mut u16,
+        depth: *mut u16,
+        stride: u32,
+    ) -> Self {
+        Rows {
+            rowv: [0; 4],
+            planes,
+            dy,
+            table: table.as_ptr(),
+            end: table.as_ptr_range().end,
+            cbase: colour,
+            stride,
+            zbase: depth,
+            covered: 0,
+            failed: 0,
+            _stores: core::marker::PhantomData,
+        }
+    }
 }
 
 // ARMv7-M: `gouraud_depth_rows`' loop as a routine of the procedure

@@ -210,10 +210,9 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         let Some(frame) = self.frame(mesh, size)? else {
             return Ok(stats);
         };
-        // Asked only where a routine takes the stores' rows directly.
-        if platform::GOURAUD_SET_UP {
-            out.fit_rows(depth, &frame.rect);
-        }
+        // Once a draw: the stores' rows, for the loops that take them
+        // directly (`Out::row_stores`).
+        out.fit_rows(depth, &frame.rect);
         let cache = &mut cache[..if X::CACHED { n } else { 0 }];
         if X::CACHED {
             frame.stage.project_all(cache);

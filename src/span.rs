@@ -94,6 +94,25 @@ pub(crate) trait Shader<const N: usize>: Sized {
         let _ = (planes, dy, table, buf, zbuf, first, width);
         None
     }
+
+    /// [`Shader::rows_depth`] in stores that [`Out::fit_rows`] found the
+    /// draw's rect in ([`Out::row_stores`]' `at`, column 0 of the table's
+    /// first row): no check a table.
+    ///
+    /// # Safety
+    /// Every row's span lies in the fitted rect, and `at` is
+    /// [`Out::row_stores`]' for the table's first row.
+    #[inline(always)]
+    unsafe fn rows_stored(
+        &self,
+        planes: &Planes<N>,
+        dy: i32,
+        table: &[Row],
+        at: &RowStores,
+    ) -> Option<u32> {
+        let _ = (planes, dy, table, at);
+        None
+    }
 }
 
 /// Gouraud colours: attributes 1–3 are the red, green and blue planes;
@@ -169,6 +188,23 @@ impl Shader<4> for Gouraud {
             return None;
         }
         let mut run = platform::Rows::new(planes, dy, table, buf, zbuf, first, width);
+        Some(platform::gouraud_depth_rows(&mut run))
+    }
+
+    #[inline(always)]
+    unsafe fn rows_stored(
+        &self,
+        planes: &Planes<4>,
+        dy: i32,
+        table: &[Row],
+        at: &RowStores,
+    ) -> Option<u32> {
+        if self.dither {
+            return None;
+        }
+        // SAFETY: the caller's contract: every row's span in both stores.
+        let mut run =
+            unsafe { platform::Rows::at(planes, dy, table, at.colour, at.depth, at.stride) };
         Some(platform::gouraud_depth_rows(&mut run))
     }
 }
@@ -588,6 +624,15 @@ impl Out for Memory<'_> {
         sh: &Sh,
     ) -> Result<u32, Self::Error> {
         if D::ENABLED {
+            // Where the draw's rect was found in both stores, which hold
+            // every row of the set-up's (within the rect's columns).
+            if let Some(at) = self.row_stores(depth, y) {
+                // SAFETY: the rows and their columns lie in the rect that
+                // `fit_rows` found in both stores; `at` is row `y`'s.
+                if let Some(w) = unsafe { sh.rows_stored(planes, dy, rows, &at) } {
+                    return Ok(w);
+                }
+            }
             if let Some((zbuf, w, y0)) = depth.flat() {
                 if w == self.width && y0 == self.y0 {
                     // The index of column 0 of the first and last rows.
