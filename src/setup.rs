@@ -41,7 +41,9 @@
 use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
-use crate::num::widening::{dot2_round16, dot2_round_shr24, mul_i32, mul_u32_i16};
+use crate::num::widening::{
+    dot2_round16, dot2_round_shr24, mul_i32, mul_u32_i16, mul_u32_i16_shr_limbs,
+};
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::walk::{Edge, EdgeFunctions, Walk, CHUNK};
@@ -348,7 +350,13 @@ fn lambdas<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<[i32; 4]> {
     // Λ·2²⁴ = 256·side·2²⁴/|A| = side·2ⁿ⁺³²·r/2⁶³ = side·r/2³¹⁻ⁿ.
     let sign = if area < 0 { -1 } else { 1 };
     // |side| < 2¹⁵ (an `i16`), r < 2³²: the product below 2⁴⁷; n ≤ 31.
-    let lam = |s: i32| shr_to_i32(mul_u32_i16(r, s * sign), 31 - n);
+    let lam = |s: i32| {
+        if platform::SOFT_MUL64 {
+            mul_u32_i16_shr_limbs(r, s * sign, 31 - n)
+        } else {
+            shr_to_i32(mul_u32_i16(r, s * sign), 31 - n)
+        }
+    };
     Some([
         lam(dy2)?,
         lam(dx2.wrapping_neg())?,

@@ -144,6 +144,27 @@ pub(crate) fn mul_u32_i16_limbs(a: u32, b: i32) -> i64 {
     ((((a >> 16) as i32 * b) as i64) << 16) + ((a & 0xFFFF) as i32 * b) as i64
 }
 
+/// `⌊a·b/2ᵏ⌋` (`|b| < 2¹⁵`, `k ≤ 31`) where it fits `i32`, from the
+/// halves' products `h = aₕ·b` and `l = aₗ·b` (each below 2³¹ in
+/// magnitude, and of `b`'s sign) without their 64-bit sum: for `k ≥ 16`
+/// it is `⌊(h + ⌊l/2¹⁶⌋)/2ᵏ⁻¹⁶⌋` (the sum below `(2¹⁵ − 1)(2¹⁶ − 1) +
+/// 2¹⁵ < 2³¹`, so it always fits), else `h·2¹⁶⁻ᵏ + ⌊l/2ᵏ⌋` (`h·2¹⁶` a
+/// multiple of `2ᵏ`), which fits where the shift and the sum do: the two
+/// terms share a sign, so a shift past `i32` is a sum past it too.
+#[inline(always)]
+pub(crate) fn mul_u32_i16_shr_limbs(a: u32, b: i32, k: u32) -> Option<i32> {
+    let (h, l) = ((a >> 16) as i32 * b, (a & 0xFFFF) as i32 * b);
+    if k >= 16 {
+        return Some((h + (l >> 16)) >> (k - 16));
+    }
+    let s = 16 - k;
+    let hs = h << s;
+    if hs >> s != h {
+        return None;
+    }
+    hs.checked_add(l >> k)
+}
+
 /// `⌊(a·x + b·y + 8)/16⌋` modulo 2³² (`|x|, |y| ≤ 2¹⁴`): a sum of two
 /// products rounded to sixteenths, kept as the low 32 bits. Where a 64-bit
 /// product is made from 16-bit ones, in 32-bit arithmetic: with `a` split
@@ -290,7 +311,8 @@ mod tests {
     use super::{
         dot2_round16_limbs, dot2_round_shr24_limbs, mul_hi32, mul_hi32_limbs, mul_i32_i16_limbs,
         mul_i32_limbs, mul_i32_u32_limbs, mul_i32_u32_shr31_limbs, mul_u32_i16_limbs,
-        mul_u32_limbs, mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10, sum_sq3_shr10_limbs,
+        mul_u32_i16_shr_limbs, mul_u32_limbs, mul_u32_shr12, mul_u32_shr12_limbs, sum_sq3_shr10,
+        sum_sq3_shr10_limbs,
     };
     use crate::tests::xorshift;
 
@@ -387,6 +409,11 @@ mod tests {
                 for b15 in [b as i16 as i32 / 2, -(1 << 15) + 1, (1 << 15) - 1] {
                     let want = (a as u32) as i64 * b15 as i64;
                     assert_eq!(mul_u32_i16_limbs(a as u32, b15), want, "{a} {b15}");
+                    for k in 0..32 {
+                        let q = i32::try_from(want >> k).ok();
+                        let got = mul_u32_i16_shr_limbs(a as u32, b15, k);
+                        assert_eq!(got, q, "{a} {b15} {k}");
+                    }
                 }
                 let h = mul_hi32(a as u32, b as u32);
                 let exact = ((a as u32 as u64 * b as u32 as u64) >> 32) as u32;
