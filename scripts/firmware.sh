@@ -144,13 +144,16 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
         --config "$(explicit thumbv6m-none-eabi)"
     [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
-    for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
-        echo "== scene configurations for $t"
+    # configs T: the flash/RAM scene configurations for target T, each
+    # built into target directories of the target's own, so that the two
+    # targets' builds (each an LTO link on one core) run side by side.
+    configs() {
+        local t=$1 level feat elf d e want
         for level in none ambient lambert specular point spot depth phong s1; do
             feat=()
             [ $level = none ] || feat=(--features $level)
-            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
-            elf=$TGT/qemu/$t/release/fixshade-config
+            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/config-$t cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
+            elf=$TGT/config-$t/$t/release/fixshade-config
             d=$OUT/config/$t/$level
             sizes "$elf" "$d"
             if [ $level = none ]; then
@@ -170,9 +173,9 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             fi
             [ $level = none ] && continue
             # The same configuration drawn through the explicit call.
-            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit cargo build --release -q \
+            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/config-explicit-$t cargo build --release -q \
                 --config "$(explicit $t)" --target $t --bin fixshade-config "${feat[@]}")
-            elf=$TGT/qemu-explicit/$t/release/fixshade-config
+            elf=$TGT/config-explicit-$t/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
             sizes "$elf" "$e"
             run_counted "$elf" "$e"
@@ -181,7 +184,20 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                 exit 1
             fi
         done
+    }
+    # The host's checksum tool built before the two run at once.
+    host_checksum "$OUT/host/s1_gouraud.bin" > /dev/null
+    pids=()
+    for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+        configs $t > "$OUT/config-$t.log" 2>&1 &
+        pids+=($!)
     done
+    for p in "${pids[@]}"; do wait "$p" || status=1; done
+    for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
+        echo "== scene configurations for $t"
+        cat "$OUT/config-$t.log"
+    done
+    [ $status -eq 0 ] || { echo "scene configurations FAILED"; exit 1; }
 fi
 
 echo "== profiles: where S1's and S2's instructions go"

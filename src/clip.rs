@@ -295,7 +295,8 @@ fn cut(poly: &mut [Corner; MAX_CORNERS], n: usize, p: &Plane, e: &[i32; 4], wind
 
 /// Projects and draws the clipped polygon `poly` in the tile whose centre
 /// is pixel `centre` from the set-up's origin, on `rect` (pixels from that
-/// centre).
+/// centre). Out of line: inlined into [`triangle`]'s tile loop it took
+/// 152 bytes more on ARMv6-M.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn draw_polygon<M, O, D, S, V, L>(

@@ -468,19 +468,11 @@ impl<'a> Rows<'a> {
         first: i64,
         width: u32,
     ) -> Self {
-        Rows {
-            rowv: [0; 4],
-            planes,
-            dy,
-            table: table.as_ptr(),
-            end: table.as_ptr_range().end,
-            cbase: buf.as_mut_ptr().wrapping_offset(first as isize),
-            stride: 2 * width,
-            zbase: zbuf.as_mut_ptr().wrapping_offset(first as isize),
-            covered: 0,
-            failed: 0,
-            _stores: core::marker::PhantomData,
-        }
+        let (colour, depth) = (buf.as_mut_ptr(), zbuf.as_mut_ptr());
+        let at = |p: *mut u16| p.wrapping_offset(first as isize);
+        // SAFETY: the stores are borrowed for `'a`; that every row's span
+        // lies in them is the caller's check (above), `at`'s contract.
+        unsafe { Rows::at(planes, dy, table, at(colour), at(depth), 2 * width) }
     }
 
     /// [`Rows::new`] from the stores' column 0 of the first row, `colour`
