@@ -17,26 +17,39 @@
 
 use crate::planes::{Planes, Row};
 
-/// `asm!` for a routine that takes its argument in r0 and may change every
-/// other register `asm!` can name (r1–r5, r8–r12, lr; r6 and r7 it saves
-/// itself): the caller's template and operands, a comma after the last,
-/// and those registers marked as changed, written once here.
+/// `asm!` for a routine that may change every high register `asm!` can
+/// name (r8–r12, lr; Thumb-1 takes none of them as an operand): the
+/// caller's template and operands (every low one it uses among them), a
+/// comma after the last, and those registers marked as changed, written
+/// once here.
 #[cfg(fixshade_thumb1)]
-macro_rules! asm_every_register {
+macro_rules! asm_high_registers {
     ($($t:tt)*) => {
         core::arch::asm!(
             $($t)*
-            out("r1") _,
-            out("r2") _,
-            out("r3") _,
-            out("r4") _,
-            out("r5") _,
             out("r8") _,
             out("r9") _,
             out("r10") _,
             out("r11") _,
             out("r12") _,
             out("lr") _,
+        )
+    };
+}
+
+/// `asm_high_registers!` for a routine that takes its argument in r0
+/// and may change every other register `asm!` can name (r1–r5 too; r6 and
+/// r7 it saves itself).
+#[cfg(fixshade_thumb1)]
+macro_rules! asm_every_register {
+    ($($t:tt)*) => {
+        asm_high_registers!(
+            $($t)*
+            out("r1") _,
+            out("r2") _,
+            out("r3") _,
+            out("r4") _,
+            out("r5") _,
         )
     };
 }
@@ -684,7 +697,7 @@ pub(crate) unsafe fn edge_rows(rows: *mut Row, n: usize, l: [i32; 5], r: [i32; 5
         // SAFETY: the caller's contract; r6 and r7, which `asm!` may not
         // name, are pushed and popped around their use; sp is restored.
         unsafe {
-            core::arch::asm!(
+            asm_high_registers!(
                 "push {{r6, r7}}",
                 "ldm r3!, {{r6, r7}}",
                 // −d of each edge into r10 and lr; each remainder less its d.
@@ -737,12 +750,6 @@ pub(crate) unsafe fn edge_rows(rows: *mut Row, n: usize, l: [i32; 5], r: [i32; 5
                 inout("r3") rest.as_ptr() => _,
                 inout("r4") rq,
                 inout("r5") rrem,
-                out("r8") _,
-                out("r9") _,
-                out("r10") _,
-                out("r11") _,
-                out("r12") _,
-                out("lr") _,
             );
         }
         [lq, lrem, rq, rrem]
