@@ -129,7 +129,7 @@ microbit_firmware() {
 status=0
 for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
     echo "== firmware for $t"
-    qemu_firmware $t "$TGT/qemu" "$OUT/$t"
+    qemu_firmware $t "$TGT/qemu-$t" "$OUT/$t"
 done
 echo "== firmware for the Cortex-M0 with 16 KB of RAM (QEMU microbit), band by band"
 microbit_firmware "$TGT/microbit" "$OUT/microbit"
@@ -138,22 +138,23 @@ microbit_firmware "$TGT/microbit" "$OUT/microbit"
 if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     echo "== the same firmware drawn through the explicit call"
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
-        qemu_firmware $t "$TGT/qemu-explicit" "$OUT/explicit/$t" --config "$(explicit $t)"
+        qemu_firmware $t "$TGT/qemu-explicit-$t" "$OUT/explicit/$t" --config "$(explicit $t)"
     done
     microbit_firmware "$TGT/microbit-explicit" "$OUT/explicit/microbit" \
         --config "$(explicit thumbv6m-none-eabi)"
     [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
     # configs T: the flash/RAM scene configurations for target T, each
-    # built into target directories of the target's own, so that the two
-    # targets' builds (each an LTO link on one core) run side by side.
+    # built into the target directories of the target's own firmware
+    # above, so that the two targets' builds (each an LTO link on one
+    # core) run side by side.
     configs() {
         local t=$1 level feat elf d e want
         for level in none ambient lambert specular point spot depth phong s1; do
             feat=()
             [ $level = none ] || feat=(--features $level)
-            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/config-$t cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
-            elf=$TGT/config-$t/$t/release/fixshade-config
+            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-$t cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
+            elf=$TGT/qemu-$t/$t/release/fixshade-config
             d=$OUT/config/$t/$level
             sizes "$elf" "$d"
             if [ $level = none ]; then
@@ -173,9 +174,9 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             fi
             [ $level = none ] && continue
             # The same configuration drawn through the explicit call.
-            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/config-explicit-$t cargo build --release -q \
+            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit-$t cargo build --release -q \
                 --config "$(explicit $t)" --target $t --bin fixshade-config "${feat[@]}")
-            elf=$TGT/config-explicit-$t/$t/release/fixshade-config
+            elf=$TGT/qemu-explicit-$t/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
             sizes "$elf" "$e"
             run_counted "$elf" "$e"

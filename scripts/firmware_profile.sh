@@ -19,7 +19,7 @@ TGT=${CARGO_TARGET_DIR_FW:-$PWD/target/fw}
 OUT=${FIRMWARE_OUT:-$PWD/target/firmware}
 TGT=$(cd "$TGT" && pwd)
 OUT=$(cd "$OUT" && pwd)
-ELF=$TGT/qemu/$T/release/fixshade-fw
+ELF=$TGT/qemu-$T/$T/release/fixshade-fw
 PLUGIN=$OUT/libinsn_count.so
 [ -f "$ELF" ] && [ -f "$PLUGIN" ] || { echo "run scripts/firmware.sh first" >&2; exit 1; }
 sym() { arm-none-eabi-nm "$ELF" | awk -v s="$1" '$3 == s { print "0x" $1 }'; }
