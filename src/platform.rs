@@ -669,7 +669,7 @@ pub(crate) const EDGE_ROWS: bool = cfg!(fixshade_thumb1);
 /// stepped past the rows (left, then right). On ARMv6-M inline assembly,
 /// the edges in registers: the remainders kept less their divisors, so
 /// that the carry's test is a sign, the steps and the negated divisors in
-/// r8–r12 and lr; 13 instructions a row without a carry (compiled, the
+/// r8–r12 and lr; 12 instructions a row without a carry (compiled, the
 /// ten words did not fit the low registers: 33). Elsewhere the edges as
 /// given ([`EDGE_ROWS`] is false and the caller does not ask).
 ///
