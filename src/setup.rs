@@ -41,9 +41,7 @@
 use core::mem::MaybeUninit;
 
 use crate::num::division::{floor_div, recip_fast};
-use crate::num::widening::{
-    dot2_round16, dot2_round_shr24, mul_i32, mul_u32_i16, mul_u32_i16_shr_limbs,
-};
+use crate::num::widening::{dot2_round16, dot2_round_shr24, mul_i32, mul_u32_i16_shr, shr_to_i32};
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::walk::{Edge, EdgeFunctions, Walk, CHUNK};
@@ -350,13 +348,7 @@ fn lambdas<const N: usize>(v: &[Vtx<N>; 3], area: i32) -> Option<[i32; 4]> {
     // Λ·2²⁴ = 256·side·2²⁴/|A| = side·2ⁿ⁺³²·r/2⁶³ = side·r/2³¹⁻ⁿ.
     let sign = if area < 0 { -1 } else { 1 };
     // |side| < 2¹⁵ (an `i16`), r < 2³²: the product below 2⁴⁷; n ≤ 31.
-    let lam = |s: i32| {
-        if platform::SOFT_MUL64 {
-            mul_u32_i16_shr_limbs(r, s * sign, 31 - n)
-        } else {
-            shr_to_i32(mul_u32_i16(r, s * sign), 31 - n)
-        }
-    };
+    let lam = |s: i32| mul_u32_i16_shr(r, s * sign, 31 - n);
     Some([
         lam(dy2)?,
         lam(dx2.wrapping_neg())?,
@@ -381,16 +373,6 @@ fn gradient<const N: usize>(v: &[Vtx<N>; 3], k: usize, lam: [i32; 4]) -> Option<
     // |d| < 2²⁶, |Λ·2²⁴| < 2³¹: the sums below 2⁵⁸.
     let g = |l1: i32, l2: i32| shr_to_i32(mul_i32(d1, l1) + mul_i32(d2, l2) + (1 << 23), 24);
     Some((g(lam[0], lam[2])?, g(lam[1], lam[3])?))
-}
-
-/// `⌊p/2ᵏ⌋` (`k ≤ 31`) if it fits `i32`: from `p`'s 32-bit halves, a
-/// variable 64-bit shift being a sequence of its own on a 32-bit core.
-#[inline(always)]
-fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
-    let (lo, hi) = (p as u32, (p >> 32) as i32);
-    let q = ((lo >> k) | (((hi as u32) << 1) << (31 - k))) as i32;
-    // It fits where the high half holds nothing but the sign beyond it.
-    ((hi >> k) == (q >> 31)).then_some(q)
 }
 
 /// `round((gx·oₓ + gy·o_y)/16)` (`|o| ≤ 8`): the plane's change from a

@@ -144,8 +144,29 @@ pub(crate) fn mul_u32_i16_limbs(a: u32, b: i32) -> i64 {
     ((((a >> 16) as i32 * b) as i64) << 16) + ((a & 0xFFFF) as i32 * b) as i64
 }
 
-/// `⌊a·b/2ᵏ⌋` (`|b| < 2¹⁵`, `k ≤ 31`) where it fits `i32`, from the
-/// halves' products `h = aₕ·b` and `l = aₗ·b` (each below 2³¹ in
+/// `⌊a·b/2ᵏ⌋` (`|b| < 2¹⁵`, `k ≤ 31`) where it fits `i32`: where a
+/// 64-bit product is made from 16-bit ones, from the halves' products
+/// alone ([`mul_u32_i16_shr_limbs`]); elsewhere the product, shifted.
+#[inline(always)]
+pub(crate) fn mul_u32_i16_shr(a: u32, b: i32, k: u32) -> Option<i32> {
+    if platform::SOFT_MUL64 {
+        mul_u32_i16_shr_limbs(a, b, k)
+    } else {
+        shr_to_i32(mul_u32_i16(a, b), k)
+    }
+}
+
+/// `⌊p/2ᵏ⌋` (`k ≤ 31`) if it fits `i32`: from `p`'s 32-bit halves, a
+/// variable 64-bit shift being a sequence of its own on a 32-bit core.
+#[inline(always)]
+pub(crate) fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
+    let (lo, hi) = (p as u32, (p >> 32) as i32);
+    let q = ((lo >> k) | (((hi as u32) << 1) << (31 - k))) as i32;
+    // It fits where the high half holds nothing but the sign beyond it.
+    ((hi >> k) == (q >> 31)).then_some(q)
+}
+
+/// [`mul_u32_i16_shr`]'s value from the halves' products `h = aₕ·b` and `l = aₗ·b` (each below 2³¹ in
 /// magnitude, and of `b`'s sign) without their 64-bit sum: for `k ≥ 16`
 /// it is `⌊(h + ⌊l/2¹⁶⌋)/2ᵏ⁻¹⁶⌋` (the sum below `(2¹⁵ − 1)(2¹⁶ − 1) +
 /// 2¹⁵ < 2³¹`, so it always fits), else `h·2¹⁶⁻ᵏ + ⌊l/2ᵏ⌋` (`h·2¹⁶` a
