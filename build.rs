@@ -23,6 +23,12 @@
 //! fixshade_soft_div32"`, but for this crate alone, so that its
 //! dependencies are not built again.
 //!
+//! With `FIXSHADE_EXPLICIT=1` in the environment it sets
+//! `fixshade_explicit_draw` (the explicit call, `src/explicit.rs`) for the
+//! Cortex-M targets: the firmware's second build (`scripts/firmware.sh`),
+//! again for this crate alone and not for the host build of the
+//! firmware's build scripts.
+//!
 //! The kernel reads them only through [`platform`].
 //!
 //! [`widening`]: src/num/widening.rs
@@ -50,5 +56,13 @@ fn main() {
     }
     if target.starts_with("thumbv6m") || limbs {
         println!("cargo:rustc-cfg=fixshade_soft_div32");
+    }
+    // Read (and so watched) for the Cortex-M targets only: a host build
+    // (the firmware's build scripts') stays as it was.
+    if target.starts_with("thumb") {
+        println!("cargo:rerun-if-env-changed=FIXSHADE_EXPLICIT");
+        if std::env::var("FIXSHADE_EXPLICIT").is_ok_and(|v| v == "1") {
+            println!("cargo:rustc-cfg=fixshade_explicit_draw");
+        }
     }
 }

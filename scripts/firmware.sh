@@ -10,7 +10,8 @@
 #     differs);
 #  3. counts the instructions of every render call with the plugin;
 #  4. builds the same firmware again drawn through the kernel's explicit
-#     call (`--cfg fixshade_explicit_draw`, src/explicit.rs), runs and
+#     call (`--cfg fixshade_explicit_draw` through FIXSHADE_EXPLICIT=1,
+#     src/explicit.rs), runs and
 #     counts it, and checks its frames the same way;
 #  5. builds the flash/RAM scene configurations for both targets, sizes
 #     them with arm-none-eabi-size, runs them for the stack high-water
@@ -96,29 +97,30 @@ same_frames() {
     done
 }
 
-# explicit T: cargo's --config that builds for target T through the
-# kernel's explicit call (src/explicit.rs): the cfg added to the flags
-# of the crate's .cargo/config.toml, not replacing them. A build with it
-# goes to a target directory of its own: the flags change every crate's.
-explicit() { echo "target.$1.rustflags=['--cfg','fixshade_explicit_draw']"; }
+# A build through the kernel's explicit call (src/explicit.rs) has
+# FIXSHADE_EXPLICIT=1 in its environment: the kernel's build script then
+# sets `--cfg fixshade_explicit_draw` for the kernel alone (build.rs). It
+# goes to a target directory of its own (the kernel would be built again
+# at each switch), which starts as a copy of the draw call's: only the
+# kernel and the firmware are built again.
+# seed FROM TO: TO as a copy of target directory FROM, unless it exists.
+seed() { [ -d "$2" ] || cp -a "$1" "$2"; }
 
-# qemu_firmware T TGT DIR [CARGO_ARGS…]: firmware/qemu's frames for
-# target T, built into TGT, run, counted and sized into DIR, checked.
+# qemu_firmware T TGT DIR: firmware/qemu's frames for target T, built
+# into TGT, run, counted and sized into DIR, checked.
 qemu_firmware() {
     local t=$1 tgt=$2 dir=$3
-    shift 3
-    (cd firmware/qemu && CARGO_TARGET_DIR=$tgt cargo build --release -q "$@" --target $t --bin fixshade-fw)
+    (cd firmware/qemu && CARGO_TARGET_DIR=$tgt cargo build --release -q --target $t --bin fixshade-fw)
     run_counted "$tgt/$t/release/fixshade-fw" "$dir"
     sizes "$tgt/$t/release/fixshade-fw" "$dir"
     same_frames 's*.bin' "$dir"
 }
 
-# microbit_firmware TGT DIR [CARGO_ARGS…]: firmware/microbit's band
-# frames, the same way on QEMU's microbit.
+# microbit_firmware TGT DIR: firmware/microbit's band frames, the same
+# way on QEMU's microbit.
 microbit_firmware() {
     local tgt=$1 dir=$2 elf
-    shift 2
-    (cd firmware/microbit && CARGO_TARGET_DIR=$tgt cargo build --release -q "$@")
+    (cd firmware/microbit && CARGO_TARGET_DIR=$tgt cargo build --release -q)
     elf=$tgt/thumbv6m-none-eabi/release/fixshade-fw-m0
     run_counted "$elf" "$dir" microbit
     sizes "$elf" "$dir"
@@ -138,10 +140,11 @@ microbit_firmware "$TGT/microbit" "$OUT/microbit"
 if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     echo "== the same firmware drawn through the explicit call"
     for t in thumbv7em-none-eabihf thumbv6m-none-eabi; do
-        qemu_firmware $t "$TGT/qemu-explicit-$t" "$OUT/explicit/$t" --config "$(explicit $t)"
+        seed "$TGT/qemu-$t" "$TGT/qemu-explicit-$t"
+        FIXSHADE_EXPLICIT=1 qemu_firmware $t "$TGT/qemu-explicit-$t" "$OUT/explicit/$t"
     done
-    microbit_firmware "$TGT/microbit-explicit" "$OUT/explicit/microbit" \
-        --config "$(explicit thumbv6m-none-eabi)"
+    seed "$TGT/microbit" "$TGT/microbit-explicit"
+    FIXSHADE_EXPLICIT=1 microbit_firmware "$TGT/microbit-explicit" "$OUT/explicit/microbit"
     [ $status -eq 0 ] || { echo "bit-exactness FAILED"; exit 1; }
 
     # configs T: the flash/RAM scene configurations for target T, each
@@ -174,8 +177,8 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
             fi
             [ $level = none ] && continue
             # The same configuration drawn through the explicit call.
-            (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-explicit-$t cargo build --release -q \
-                --config "$(explicit $t)" --target $t --bin fixshade-config "${feat[@]}")
+            (cd firmware/qemu && FIXSHADE_EXPLICIT=1 CARGO_TARGET_DIR=$TGT/qemu-explicit-$t \
+                cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-explicit-$t/$t/release/fixshade-config
             e=$OUT/config-explicit/$t/$level
             sizes "$elf" "$e"

@@ -32,8 +32,9 @@ use core::marker::PhantomData;
 use crate::color::{Rgb, Shade, SHADE_ONE};
 use crate::light::LightSet;
 use crate::light::PreparedLights;
+use crate::light_term::PixelSurface;
 use crate::material::{Material, Specular};
-use crate::normalize::normalize;
+use crate::normalize::{normalize, Dir};
 use crate::specular_table::Exponent;
 use crate::vector::{Mat4, Unit3, Vec3};
 
@@ -207,6 +208,51 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
                 shininess: self.shininess,
             };
             self.lights.shade::<S>(&ctx, &mut acc);
+        }
+        Shade::from_bits(
+            acc[0].min(SHADE_ONE),
+            acc[1].min(SHADE_ONE),
+            acc[2].min(SHADE_ONE),
+        )
+    }
+
+    /// The colour at eye-space point `p` (raw `I8F24`) with the normal
+    /// `normal` (any scale: Phong shading's interpolated one; zero lights
+    /// nothing but `E + A·Ka`), clamped to [0, 1]: the equation per pixel.
+    /// Light sets of the crate take it in the per-pixel form (`N`, `V`
+    /// and each `L` as [`Dir`]s, the cosines from their reciprocal lengths,
+    /// [`PreparedLights::shade_at`]); others through [`Lighting::shade`]
+    /// with the unit vectors made here.
+    #[inline]
+    pub(crate) fn shade_pixel(&self, p: [i32; 3], normal: [i32; 3]) -> Shade {
+        if !<L::Prepared as PreparedLights>::SCALAR {
+            let n = normalize(normal).unwrap_or(Unit3::ZERO);
+            return self.shade(Vec3::from_bits(p[0], p[1], p[2]), n);
+        }
+        let mut acc = self.base;
+        if let Some((n, _)) = Dir::reduce(normal) {
+            let n = Dir::new(n);
+            let view = if !S::ENABLED {
+                None
+            } else if V::LOCAL {
+                // −P; saturating, as `view_dir`'s.
+                Dir::reduce(p.map(i32::saturating_neg)).map(|(v, _)| Dir::new(v))
+            } else {
+                Some(Dir::Z)
+            };
+            let at = PixelSurface {
+                position: p,
+                n,
+                cos_nv: match &view {
+                    Some(_) if !V::LOCAL => n.cos_z(),
+                    Some(v) => n.cos(v),
+                    None => 0,
+                },
+                view,
+                shininess: self.shininess,
+                view_z: !V::LOCAL,
+            };
+            self.lights.shade_at::<S>(&at, &mut acc);
         }
         Shade::from_bits(
             acc[0].min(SHADE_ONE),

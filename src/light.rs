@@ -25,9 +25,12 @@
 use fixed::types::U32F32;
 
 use crate::color::Rgb;
-use crate::light_term::{add_light, add_light_half, infinite_half, Gains, Surface, FACTOR_ONE};
+use crate::light_term::{
+    add_light, add_light_at, add_light_half, infinite_half, specular_delta_of, Gains, PixelSurface,
+    Surface, FACTOR_ONE,
+};
 use crate::material::Specular;
-use crate::normalize::{normalize, normalize_len};
+use crate::normalize::{normalize, normalize_len, one_minus_q28, Dir};
 use crate::num::division::quotient_u32;
 use crate::num::widening::mul_i32_i16;
 use crate::num::{clamp_wide, step_wide, MiniFloat, WidePoint};
@@ -386,6 +389,18 @@ pub trait PreparedLights: Clone + core::fmt::Debug {
     /// Adds this light's (or these lights') contribution at `ctx` to `acc`
     /// (`Q.16` per channel, saturating).
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]);
+    /// Whether [`PreparedLights::shade_at`] is this set's own: Phong
+    /// shading then lights each pixel in that form, and otherwise through
+    /// [`PreparedLights::shade`] with a unit normal and view vector made at
+    /// each pixel. Every light of the crate has it.
+    const SCALAR: bool = false;
+    /// [`PreparedLights::shade`] at a point in the per-pixel form (the
+    /// kernel's; called only where [`PreparedLights::SCALAR`] holds).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        let _ = (at, acc);
+    }
 }
 
 /// Any number of lights: one light, a tuple, an array, a `heapless::Vec`.
@@ -510,6 +525,11 @@ impl DirectionalLight {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedDirectional {
     l: Unit3,
+    /// `l` for the per-pixel form.
+    dir: Dir,
+    /// `H` for the infinite viewer in the per-pixel form.
+    half_z: Option<Dir>,
+
     /// `H` for the infinite viewer (`normalise(L + (0, 0, 1))`), the same
     /// at every vertex, so computed here once.
     half: Option<Unit3>,
@@ -526,15 +546,32 @@ impl PreparedLights for PreparedDirectional {
             add_light::<S>(ctx, self.l, FACTOR_ONE, &self.gains, acc);
         }
     }
+    const SCALAR: bool = true;
+    #[inline]
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        let (l, nl) = (&self.dir, Dir::dot_d(at.n.d(), &self.dir));
+        add_light_at::<S>(at, l, nl, FACTOR_ONE, &self.gains, acc, |nl, v| {
+            if S::BLINN && at.view_z {
+                // 1 − N·H with the infinite viewer's H, made once.
+                Some(one_minus_q28(at.n.cos(self.half_z.as_ref()?)))
+            } else {
+                specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))
+            }
+        });
+    }
 }
 
 impl LightSet for DirectionalLight {
     type Prepared = PreparedDirectional;
     fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedDirectional {
         let l = dir_to_eye(view, self.direction);
+        let dir = Dir::new(l.to_bits().map(i32::from));
+        let half = infinite_half(l);
         PreparedDirectional {
             l,
-            half: infinite_half(l),
+            dir,
+            half_z: half.map(|h| Dir::new(h.to_bits().map(i32::from))),
+            half,
             gains: Gains::new(self.diffuse, self.specular, kd, ks),
         }
     }
@@ -841,6 +878,17 @@ pub struct PreparedPoint<A: Falloff, const SPOT: bool> {
     gains: Gains,
     att: A::Prepared,
     cone: SpotCone,
+    /// The cone's axis for the per-pixel form (`+Z` for a point light).
+    axis: Dir,
+    /// `pos` where it fits `i32`.
+    pos32: Option<[i32; 3]>,
+}
+
+/// `p` where each coordinate fits `i32`.
+#[inline(always)]
+fn fits_i32(p: &[i64; 3]) -> Option<[i32; 3]> {
+    let c = |i: usize| i32::try_from(p[i]).ok();
+    Some([c(0)?, c(1)?, c(2)?])
 }
 
 /// The factor `s·f` (`Q.15`) and direction of a point-like light at `pos`
@@ -909,11 +957,68 @@ fn light_vector(v: [i64; 3]) -> Option<(Unit3, u64)> {
     Some((l, (dot.max(0) >> 14) as u64))
 }
 
+/// [`point_factor`] at a point in the per-pixel form: the direction
+/// towards the light, the dot product of `N`'s and its components, and
+/// `s·f`; `None` where `d = 0`, where the surface faces away from the
+/// light (the sign of the reduced vectors' dot product, which differs from
+/// the exact one only where `|N·L|` is below about 2⁻¹³) or outside the
+/// cone.
+#[inline(always)]
+fn point_factor_at<A: Falloff, const SPOT: bool>(
+    at: &PixelSurface,
+    pos: &[i64; 3],
+    pos32: Option<[i32; 3]>,
+    att: &A::Prepared,
+    cone: &SpotCone,
+    axis: &Dir,
+) -> Option<(Dir, i32, u32)> {
+    let p = at.position;
+    // |pos| ≤ 2^62, |p| < 2^31: the difference cannot overflow. Where the
+    // light's position fits i32 (`pos32`) and the difference too (the
+    // usual case), in 32 bits.
+    let near = pos32.and_then(|q| {
+        let d = |i: usize| q[i].checked_sub(p[i]);
+        Some([d(0)?, d(1)?, d(2)?])
+    });
+    let (d, s) = match near {
+        Some(v) => Dir::reduce(v),
+        None => Dir::reduce_wide([0, 1, 2].map(|i| pos[i] - p[i] as i64)),
+    }?;
+    let nl = Dir::dot_d(&d, &at.n);
+    if nl <= 0 {
+        return None;
+    }
+    let l = Dir::new(d);
+    let mut sf = A::factor(att, l.length(s));
+    if SPOT {
+        // 1 − cos γ with cos γ = −L·S.
+        let delta = one_minus_q28(-l.cos(axis));
+        if delta > cone.delta_cutoff {
+            return None;
+        }
+        let s = pow_from_delta(delta, cone.exponent) as u32;
+        sf = (s * sf + (1 << 14)) >> 15;
+    }
+    Some((l, nl, sf))
+}
+
 impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {
     #[inline]
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         if let Some((l, sf)) = point_factor::<A, SPOT>(ctx, &self.pos, &self.att, &self.cone) {
             add_light::<S>(ctx, l, sf, &self.gains, acc);
+        }
+    }
+    const SCALAR: bool = true;
+    #[inline]
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        let (pos, cone) = ((&self.pos, self.pos32), (&self.cone, &self.axis));
+        if let Some((l, nl, sf)) =
+            point_factor_at::<A, SPOT>(at, pos.0, pos.1, &self.att, cone.0, cone.1)
+        {
+            add_light_at::<S>(at, &l, nl, sf, &self.gains, acc, |nl, v| {
+                specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))
+            });
         }
     }
 }
@@ -925,13 +1030,18 @@ fn prepare_point<A: Falloff, const SPOT: bool>(
     kd: Rgb,
     ks: Rgb,
 ) -> PreparedPoint<A, SPOT> {
+    let axis = dir_to_eye(view, cone.axis);
+    let pos = point_to_eye(view, l.position.to_bits(), true);
     PreparedPoint {
-        pos: point_to_eye(view, l.position.to_bits(), true),
+        pos,
+        pos32: fits_i32(&pos),
         gains: Gains::new(l.diffuse, l.specular, kd, ks),
         att: l.attenuation.prepare(),
-        cone: SpotCone {
-            axis: dir_to_eye(view, cone.axis),
-            ..cone
+        cone: SpotCone { axis, ..cone },
+        axis: if SPOT {
+            Dir::new(axis.to_bits().map(i32::from))
+        } else {
+            Dir::Z
         },
     }
 }
@@ -1142,13 +1252,18 @@ impl<A: Falloff> LightSet for AreaLight<A> {
     }
 }
 
-impl<A: Falloff> PreparedLights for PreparedArea<A> {
-    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
-        let no_cone = SpotCone {
-            axis: Unit3::ZERO,
-            delta_cutoff: 0,
-            exponent: Exponent::ZERO,
-        };
+impl<A: Falloff> PreparedArea<A> {
+    /// The cone of a sample: none.
+    const NO_CONE: SpotCone = SpotCone {
+        axis: Unit3::ZERO,
+        delta_cutoff: 0,
+        exponent: Exponent::ZERO,
+    };
+
+    /// Adds the light to `acc`, `sample(pos, sum)` adding the whole light's
+    /// contribution from the sample at `pos` to `sum`.
+    #[inline(always)]
+    fn add_samples(&self, acc: &mut [u32; 3], mut sample: impl FnMut(&[i64; 3], &mut [u32; 3])) {
         // Each sample adds the whole light's contribution, rounded to Q.16
         // (error ≤ ½ unit); the sum is divided by k² once, rounded: the
         // mean of the k² roundings plus the division's stays within 1 Q.16
@@ -1166,9 +1281,7 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
             let mut pos = row;
             let mut row_sum = [0u32; 3];
             for _ in 0..self.k {
-                if let Some((l, sf)) = point_factor::<A, false>(ctx, &pos, &self.att, &no_cone) {
-                    add_light::<S>(ctx, l, sf, &self.gains, &mut row_sum);
-                }
+                sample(&pos, &mut row_sum);
                 pos = [0, 1, 2].map(|i| step_wide(pos[i], self.step_v[i]));
             }
             for (s, r) in sum.iter_mut().zip(row_sum) {
@@ -1182,6 +1295,34 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
             // single sample, below 2^26.
             *a = a.saturating_add(((s + k2 / 2) / k2) as u32);
         }
+    }
+}
+
+impl<A: Falloff> PreparedLights for PreparedArea<A> {
+    fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
+        self.add_samples(acc, |pos, sum| {
+            if let Some((l, sf)) = point_factor::<A, false>(ctx, pos, &self.att, &Self::NO_CONE) {
+                add_light::<S>(ctx, l, sf, &self.gains, sum);
+            }
+        });
+    }
+    const SCALAR: bool = true;
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        self.add_samples(acc, |pos, sum| {
+            let f = point_factor_at::<A, false>(
+                at,
+                pos,
+                fits_i32(pos),
+                &self.att,
+                &Self::NO_CONE,
+                &Dir::Z,
+            );
+            if let Some((l, nl, sf)) = f {
+                add_light_at::<S>(at, &l, nl, sf, &self.gains, sum, |nl, v| {
+                    specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))
+                });
+            }
+        });
     }
 }
 
@@ -1260,6 +1401,15 @@ impl PreparedLights for PreparedAny {
             PreparedAny::Area(l) => l.shade::<S>(ctx, acc),
         }
     }
+    const SCALAR: bool = true;
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        match self {
+            PreparedAny::Directional(l) => l.shade_at::<S>(at, acc),
+            PreparedAny::Point(l) => l.shade_at::<S>(at, acc),
+            PreparedAny::Spot(l) => l.shade_at::<S>(at, acc),
+            PreparedAny::Area(l) => l.shade_at::<S>(at, acc),
+        }
+    }
 }
 
 /// No lights at all: `E + A·Ka` only.
@@ -1273,6 +1423,7 @@ impl PreparedLights for () {
     const READS_POSITION: bool = false;
     #[inline(always)]
     fn shade<S: Specular>(&self, _: &Surface, _: &mut [u32; 3]) {}
+    const SCALAR: bool = true;
 }
 
 macro_rules! tuple_sets {
@@ -1289,6 +1440,11 @@ macro_rules! tuple_sets {
             #[inline]
             fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
                 $(self.$i.shade::<S>(ctx, acc);)+
+            }
+            const SCALAR: bool = $($t::SCALAR)&&+;
+            #[inline]
+            fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+                $(self.$i.shade_at::<S>(at, acc);)+
             }
         }
     )+};
@@ -1321,6 +1477,13 @@ impl<P: PreparedLights, const N: usize> PreparedLights for [P; N] {
             l.shade::<S>(ctx, acc);
         }
     }
+    const SCALAR: bool = P::SCALAR;
+    #[inline]
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        for l in self {
+            l.shade_at::<S>(at, acc);
+        }
+    }
 }
 
 impl<L: LightSet, const N: usize> LightSet for heapless::Vec<L, N> {
@@ -1341,6 +1504,13 @@ impl<P: PreparedLights, const N: usize> PreparedLights for heapless::Vec<P, N> {
     fn shade<S: Specular>(&self, ctx: &Surface, acc: &mut [u32; 3]) {
         for l in self {
             l.shade::<S>(ctx, acc);
+        }
+    }
+    const SCALAR: bool = P::SCALAR;
+    #[inline]
+    fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
+        for l in self {
+            l.shade_at::<S>(at, acc);
         }
     }
 }

@@ -7,7 +7,9 @@
 
 use crate::color::Rgb;
 use crate::material::Specular;
-use crate::normalize::{normalize, one_minus_cos};
+use crate::normalize::{normalize, one_minus_cos, one_minus_q28, rsqrt_q, Dir};
+use crate::num::widening::{mul_i32, mul_i32_u32};
+use crate::platform;
 use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{Unit3, Vec3};
 
@@ -287,27 +289,153 @@ fn add_light_with<S: Specular>(
     if nl <= 0 || sf == 0 {
         return;
     }
+    // nl ≤ 2^28 + a few units of rounding: Q.28 → Q.15, clamped to 1.
+    let nl15 = ((nl as u32 + (1 << 12)) >> 13).min(FACTOR_ONE);
+    add_term::<S>(nl15, sf, ctx.shininess, g, acc, || {
+        if ctx.view.is_zero() {
+            None
+        } else {
+            delta(nl)
+        }
+    });
+}
+
+/// A light's term from its factors: `nl15 = max(N·L, 0)` and `sf = s·f`
+/// (`Q.15`, each at most 2¹⁵; a larger `sf` is clamped) and `delta()`, the
+/// specular base's `1 − x` in `Q.28` (`None`: no specular term).
+#[inline(always)]
+fn add_term<S: Specular>(
+    nl15: u32,
+    sf: u32,
+    shininess: Exponent,
+    g: &Gains,
+    acc: &mut [u32; 3],
+    delta: impl FnOnce() -> Option<u32>,
+) {
     // sf ≤ 2^15 (documented clamp; every light of the crate already gives
     // at most 2^15, so this changes nothing for them).
     let sf = sf.min(FACTOR_ONE);
-    // nl ≤ 2^28 + a few units of rounding: Q.28 → Q.15, clamped to 1.
-    let nl15 = ((nl as u32 + (1 << 12)) >> 13).min(FACTOR_ONE);
     // nl15·sf ≤ 2^30: diff ≤ 2^15, and so is spec below (sp ≤ 2^15, the
     // range of pow_from_delta), as Gain::apply_in_range needs.
     let diff = (nl15 * sf + (1 << 14)) >> 15;
     for (a, gd) in acc.iter_mut().zip(g.diffuse.iter()) {
         *a = a.saturating_add(gd.apply_in_range(diff));
     }
-    if S::ENABLED && !ctx.view.is_zero() {
-        let Some(delta) = delta(nl) else {
+    if S::ENABLED {
+        let Some(delta) = delta() else {
             return;
         };
-        let sp = pow_from_delta(delta, ctx.shininess) as u32;
+        let sp = pow_from_delta(delta, shininess) as u32;
         let spec = (sp * sf + (1 << 14)) >> 15;
         for (a, gs) in acc.iter_mut().zip(g.specular.iter()) {
             *a = a.saturating_add(gs.apply_in_range(spec));
         }
     }
+}
+
+/// The shaded point in the form Phong shading's per-pixel lighting takes:
+/// the eye position, the normal and the direction to the viewer as
+/// [`Dir`]s (integer directions with their reciprocal lengths: no unit
+/// vector is made), the cosine between those two and the shininess. Made
+/// by the kernel; a light set that does not take it
+/// ([`PreparedLights::SCALAR`](crate::light::PreparedLights::SCALAR)) is
+/// shaded through a [`Surface`] instead.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct PixelSurface {
+    /// Eye-space position `P`, raw `I8F24`.
+    pub(crate) position: [i32; 3],
+    /// `N`, already turned for a back face.
+    pub(crate) n: Dir,
+    /// `V`, `None` where it is undefined (a local viewer at the point) or
+    /// no specular term is computed.
+    pub(crate) view: Option<Dir>,
+    /// `N·V` in `Q.30` (0 without `view`).
+    pub(crate) cos_nv: i32,
+    /// Shininess `n`.
+    pub(crate) shininess: Exponent,
+    /// `V` is the infinite viewer's `+Z`.
+    pub(crate) view_z: bool,
+}
+
+/// [`add_light`] at a [`PixelSurface`]: the light in direction `l`, `nl`
+/// the integer dot product of `N`'s and `l`'s components
+/// ([`Dir::dot_d`]), `sf` as there, and `delta(N·L)` the specular base's
+/// `1 − x` (`Q.28`) from the cosine `N·L` (`Q.30`), asked only where `V`
+/// is defined. The cosines from the directions' reciprocal lengths.
+#[inline(always)]
+pub(crate) fn add_light_at<S: Specular>(
+    at: &PixelSurface,
+    l: &Dir,
+    nl: i32,
+    sf: u32,
+    g: &Gains,
+    acc: &mut [u32; 3],
+    delta: impl FnOnce(i32, &Dir) -> Option<u32>,
+) {
+    if nl <= 0 || sf == 0 {
+        return;
+    }
+    let nl15 = at.n.cos15(nl, l);
+    add_term::<S>(nl15, sf, at.shininess, g, acc, || {
+        let v = at.view.as_ref()?;
+        delta(at.n.cos_of_dot(nl, l), v)
+    });
+}
+
+/// `1 − x` in `Q.28` for the specular base `x` from the cosines (`Q.30`)
+/// between `N`, `L` and `V`: Blinn's `N·H` ([`blinn_delta`] with the
+/// [`HalfNorm`] of `L·V`), Phong's `R·V = 2(N·L)(N·V) − L·V`. `None`
+/// where `H` is undefined (`L + V = 0`).
+#[inline(always)]
+pub(crate) fn specular_delta_of<S: Specular>(nl: i32, nv: i32, lv: i32) -> Option<u32> {
+    if S::BLINN {
+        blinn_delta(nl, nv, HalfNorm::of(lv)?)
+    } else {
+        // |2(N·L)(N·V) − L·V| ≤ 3 + ε: i64 in Q.30.
+        let x = (mul_i32(nl, nv) >> 29) - lv as i64;
+        Some(one_minus_q28(x.clamp(-(1 << 30), 1 << 30) as i32))
+    }
+}
+
+/// `1/|L + V|` for unit `L`, `V`: `|L + V| = 2·√W` with `W = (1 + L·V)/2`,
+/// and `1/√W = r·2^(k/2 − 30)` (`r` [`rsqrt_q`]'s, `k` an even shift).
+/// What Blinn's `N·H` divides by: the same at every pixel for a
+/// directional light and the infinite viewer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct HalfNorm {
+    r: u32,
+    k: u32,
+}
+
+impl HalfNorm {
+    /// The half vector's length from `L·V` (`Q.30`); `None` where `L + V
+    /// = 0` to within the cosine's rounding (`|L + V| < 2⁻¹⁰`: a light
+    /// straight behind the point as the viewer sees it).
+    #[inline(always)]
+    pub(crate) fn of(lv: i32) -> Option<HalfNorm> {
+        // W in Q.32, L·V taken below 1 so that it fits: 0 ..= 2³² − 2.
+        let w = (lv.clamp(-(1 << 30), (1 << 30) - 1) + (1 << 30)) as u32 * 2;
+        if w < 1 << 10 {
+            return None;
+        }
+        // An even shift k ≤ 30 into [2³⁰, 2³²): r = 2³⁰/√(w·2ᵏ/2³²).
+        let k = platform::leading_zeros(w) & !1;
+        Some(HalfNorm {
+            r: rsqrt_q(w << k),
+            k,
+        })
+    }
+}
+
+/// Blinn's `1 − N·H` (`Q.28`) from `N·L` and `N·V` (`Q.30`): `N·H = s/√W`
+/// with `s = (N·L + N·V)/2`, `|s| ≤ 2³⁰·(1 + 2⁻²²)`; in `Q.30`
+/// `s·r·2^(k/2 − 30)`, `|s·r| < 2⁶²` shifted right by at least 15.
+#[inline(always)]
+pub(crate) fn blinn_delta(nl: i32, nv: i32, h: HalfNorm) -> Option<u32> {
+    let s = (nl >> 1) + (nv >> 1);
+    let x = mul_i32_u32(s, h.r) >> (30 - h.k / 2);
+    Some(one_minus_q28(x.clamp(-(1 << 30), 1 << 30) as i32))
 }
 
 /// `1 − x` in `Q.28` for the specular base `x` (`N·H` or `R·V`), computed as

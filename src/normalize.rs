@@ -69,7 +69,9 @@
 //! (callers that want the [`Unit3::ZERO`] convention write
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
-use crate::num::widening::{mul_hi32, mul_i32_u32_shr31, mul_u32_shr12, sum_sq3_shr10};
+use crate::num::widening::{
+    mul_hi32, mul_i32_u32, mul_i32_u32_shr31, mul_u32, mul_u32_shr12, sum_sq3_shr10,
+};
 use crate::platform;
 use crate::vector::{Unit3, UNIT_ONE};
 
@@ -235,6 +237,181 @@ pub(crate) fn one_minus_cos(n: [i32; 3], s: [i32; 3]) -> Option<u32> {
     let dev = (nn - (1 << 28)).clamp(-(1 << 15), 1 << 15);
     let c = v - (((v >> 14) * dev) >> 15);
     Some(((1 << 28) - c).clamp(0, 1 << 29) as u32)
+}
+
+/// A direction in the form the per-pixel lighting takes: an integer
+/// vector `d` whose largest magnitude lies in `[2¹³, 2¹⁴]`, its squared
+/// length `dd` and `u = 2⁴⁴/|d|` (within a relative 2⁻²³, [`rsqrt_q`] of
+/// the exact `dd`), so that `d·u/2⁴⁴` is the unit vector. No unit vector
+/// is rounded: the cosine of two directions ([`Dir::cos`]) takes their
+/// integer dot product and both `u`, so a length's rounding does not reach
+/// `1 − cos` near 0, where steep powers read it (the rounding of `d`'s
+/// components turns the direction by at most 2⁻¹³, which moves `1 − cos`
+/// to second order there).
+///
+/// Ranges: `|dᵢ| ≤ 2¹⁴`, `2²⁶ ≤ dd ≤ 3·2²⁸`, `u ∈ (2²⁹, 2³¹]`; the dot
+/// product of two directions is at most `|a|·|b| ≤ 3·2²⁸` in magnitude.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Dir {
+    d: [i32; 3],
+    dd: u32,
+    u: u32,
+}
+
+impl Dir {
+    /// `+Z`: the infinite viewer's `V`.
+    pub(crate) const Z: Dir = Dir {
+        d: [0, 0, 1 << 14],
+        dd: 1 << 28,
+        u: 1 << 30,
+    };
+
+    /// The components of `v` divided by `2^s`, rounded, with `s` such that
+    /// the largest magnitude lands in `[2¹³, 2¹⁴]`, and `s`; `None` for the
+    /// zero vector. (Only shifts: the sign of a dot product with the result
+    /// is known before [`Dir::new`] takes the root.)
+    #[inline(always)]
+    pub(crate) fn reduce(v: [i32; 3]) -> Option<([i32; 3], i32)> {
+        let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+        if m == 0 {
+            return None;
+        }
+        // The top bit of the largest magnitude; every |vᵢ| < 2^(top + 1).
+        let s = 31 - platform::leading_zeros(m) as i32 - 13;
+        let d = if s > 0 {
+            // vᵢ >> (s − 1) lies within ±2¹⁵: adding 1 cannot overflow, and
+            // the rounded half within ±2¹⁴.
+            v.map(|c| ((c >> (s - 1)) + 1) >> 1)
+        } else {
+            // Exact: |vᵢ| < 2^(13 + s + 1), shifted left by −s ≤ 13.
+            v.map(|c| c << -s)
+        };
+        Some((d, s))
+    }
+
+    /// [`Dir::reduce`] of a wide vector (a light farther than 2⁷ units):
+    /// first taken to 30 bits (a rounding of 2⁻²⁹ of the largest
+    /// component, far below the direction's own 2⁻¹⁴).
+    pub(crate) fn reduce_wide(v: [i64; 3]) -> Option<([i32; 3], i32)> {
+        if let (Ok(x), Ok(y), Ok(z)) = (
+            i32::try_from(v[0]),
+            i32::try_from(v[1]),
+            i32::try_from(v[2]),
+        ) {
+            return Dir::reduce([x, y, z]);
+        }
+        let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
+        // Some |vᵢ| ≥ 2³¹: t ≥ 2, and vᵢ >> (t − 1) lies within ±2³¹, its
+        // rounded half within ±2³⁰.
+        let t = 63 - m.leading_zeros() as i32 - 29;
+        let w = v.map(|c| (((c >> (t - 1)) + 1) >> 1) as i32);
+        let (d, s) = Dir::reduce(w)?;
+        Some((d, s + t))
+    }
+
+    /// The direction of reduced components `d` (largest magnitude in
+    /// `[2¹³, 2¹⁴]`: [`Dir::reduce`]'s, or a unit vector's `I2F14` bits,
+    /// whose largest is at least `2¹⁴/√3`).
+    #[inline(always)]
+    pub(crate) fn new(d: [i32; 3]) -> Dir {
+        // Each square at most 2²⁸: the sum within [2²⁶, 3·2²⁸].
+        let dd = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) as u32;
+        // An even shift k into [2³⁰, 2³²): 4 below 2²⁸, else 2. Then
+        // rsqrt_q = 2⁴⁶/√(dd·2ᵏ) = 2^(46 − k/2)/|d|, and u = 2⁴⁴/|d| is
+        // it shifted right by 2 − k/2.
+        let (x, half) = if dd < 1 << 28 {
+            (dd << 4, 0)
+        } else {
+            (dd << 2, 1)
+        };
+        Dir {
+            d,
+            dd,
+            u: rsqrt_q(x) >> half,
+        }
+    }
+
+    /// The integer dot product with `o` (at most `3·2²⁸` in magnitude):
+    /// the cosine's sign, before any root.
+    #[inline(always)]
+    pub(crate) fn dot_d(d: &[i32; 3], o: &Dir) -> i32 {
+        d[0] * o.d[0] + d[1] * o.d[1] + d[2] * o.d[2]
+    }
+
+    /// The components.
+    #[inline(always)]
+    pub(crate) fn d(&self) -> &[i32; 3] {
+        &self.d
+    }
+
+    /// The cosine of the angle to `o`, `Q.30`.
+    #[inline(always)]
+    pub(crate) fn cos(&self, o: &Dir) -> i32 {
+        self.cos_of_dot(Dir::dot_d(&self.d, o), o)
+    }
+
+    /// The cosine of the angle to `o` from the dot product `dot` of the
+    /// two (`Q.30`): `dot·u·u′/2⁸⁸`. `u·u′ ≤ 2⁶²`, its high word `uu ≤
+    /// 2³⁰` (truncated: a relative 2⁻²⁹), and `|dot·uu| < 2⁶⁰`; the cosine
+    /// is within a relative 2⁻²² of the reduced vectors' (at most `2³⁰·(1
+    /// + 2⁻²²)` in magnitude).
+    #[inline(always)]
+    pub(crate) fn cos_of_dot(&self, dot: i32, o: &Dir) -> i32 {
+        let uu = mul_hi32(self.u, o.u);
+        (mul_i32_u32(dot, uu) >> 26) as i32
+    }
+
+    /// [`Dir::cos`] with `+Z` ([`Dir::Z`], `u = 2³⁰`): `d_z·u/2¹⁴`, one
+    /// product (`|d_z·u| ≤ 2⁴⁵`).
+    #[inline(always)]
+    pub(crate) fn cos_z(&self) -> i32 {
+        (mul_i32_u32(self.d[2], self.u) >> 14) as i32
+    }
+
+    /// The cosine of the angle to `o` from a positive dot product `dot` of
+    /// the two, in `Q.15`, clamped to 1: the diffuse factor, from six 32-bit
+    /// products on every core (the same value everywhere). `uu = u·u′/2³²`
+    /// from 16-bit halves (`≤ 2³⁰ + 2¹⁷`, within 3 units: the low
+    /// halves' product and two floors), then `dot·uu/2³⁰` from 15-bit
+    /// halves (`dot ≤ 3·2²⁸`: each product below 2³⁰, the middle sum below
+    /// 2³¹; within 2 units), its `2⁻¹¹` rounded: within about half a unit
+    /// of 2⁻¹⁵ of the cosine.
+    #[inline(always)]
+    pub(crate) fn cos15(&self, dot: i32, o: &Dir) -> u32 {
+        let (ah, al) = (self.u >> 16, self.u & 0xFFFF);
+        let (bh, bl) = (o.u >> 16, o.u & 0xFFFF);
+        let uu = ah * bh + ((ah * bl) >> 16) + ((al * bh) >> 16);
+        let dot = dot as u32;
+        let (dh, dl) = (dot >> 15, dot & 0x7FFF);
+        let (uh, ul) = (uu >> 15, uu & 0x7FFF);
+        let c = dh * uh + ((dh * ul + dl * uh) >> 15);
+        ((c + (1 << 10)) >> 11).min(1 << 15)
+    }
+
+    /// `|d|·2^s` (for `d` reduced from `v` by `s`: `v`'s length in its own
+    /// units, within a relative 2⁻¹³, the rounding of `d`), saturating.
+    /// `dd·u = |d|·2⁴⁴` is below 2⁵⁹.
+    #[inline(always)]
+    pub(crate) fn length(&self, s: i32) -> u64 {
+        let p = mul_u32(self.dd, self.u);
+        let sh = 44 - s;
+        if sh >= 0 {
+            p >> sh.min(63)
+        } else if p > u64::MAX >> -sh {
+            u64::MAX
+        } else {
+            p << -sh
+        }
+    }
+}
+
+/// `1 − x` in `Q.28` (`0 ..= 2²⁹`), rounded, of a cosine `x` in `Q.30`
+/// taken within [−1, 1].
+#[inline(always)]
+pub(crate) fn one_minus_q28(x: i32) -> u32 {
+    // 2³⁰ − x ∈ [0, 2³¹] (u32).
+    let x = x.clamp(-(1 << 30), 1 << 30);
+    ((1u32 << 30).wrapping_sub(x as u32) + 2) >> 2
 }
 
 /// The unit vector in the direction of a wide vector and its length in `v`'s

@@ -26,11 +26,9 @@ use crate::depth::DepthTest;
 use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::Specular;
-use crate::normalize::normalize;
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::setup::Rect;
-use crate::vector::{Unit3, Vec3};
 use crate::walk::Span;
 
 /// A pixel's stored depth from its depth plane: `d = ⌊z/2¹²⌋`, clamped to
@@ -400,7 +398,6 @@ impl<S: Specular, V: Viewer, L: LightSet> Shader<7> for Phong<'_, S, V, L> {
         // The planes lie within 2¹⁵·² units of their vertex values'
         // range (`src/setup.rs`): the normal's between unit vectors (any
         // scale normalises), the position's between the corners'.
-        let n = normalize([a[1], a[2], a[3]]).unwrap_or(Unit3::ZERO);
         let p = match self.near {
             Some(o) => [4, 5, 6].map(|k| (a[k] >> 4).saturating_add(o[k - 4])),
             None => [4, 5, 6].map(|k| {
@@ -408,7 +405,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Shader<7> for Phong<'_, S, V, L> {
                 v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
             }),
         };
-        let shade = self.lighting.shade(Vec3::from_bits(p[0], p[1], p[2]), n);
+        let shade = self.lighting.shade_pixel(p, [a[1], a[2], a[3]]);
         if self.dither {
             dither_shade(shade, x, y)
         } else {

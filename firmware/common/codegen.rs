@@ -18,7 +18,9 @@ use fixshade_host::mesh_convert::MeshData;
 use fixshade_host::scene_desc::{self, LightDesc, MeshDesc, SceneDesc, Shading, SpecularModel};
 
 /// A firmware build script's common start: puts the crate's `memory.x` on
-/// the linker's path, says what reruns the script, and returns `OUT_DIR`.
+/// the linker's path, says what reruns the script, sets
+/// `fixshade_explicit_draw` under `FIXSHADE_EXPLICIT=1`, and returns
+/// `OUT_DIR`.
 pub fn start_build() -> std::path::PathBuf {
     let out = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
     std::fs::copy("memory.x", out.join("memory.x")).expect("memory.x");
@@ -27,6 +29,13 @@ pub fn start_build() -> std::path::PathBuf {
     println!("cargo:rerun-if-changed=../common/codegen.rs");
     println!("cargo:rerun-if-changed=../common/scenes.rs");
     println!("cargo:rerun-if-changed=../../src");
+    // FIXSHADE_EXPLICIT=1: the build drawn through the kernel's explicit
+    // call (scripts/firmware.sh), whose kernel the kernel's build script
+    // builds with the same cfg.
+    println!("cargo:rerun-if-env-changed=FIXSHADE_EXPLICIT");
+    if std::env::var("FIXSHADE_EXPLICIT").is_ok_and(|v| v == "1") {
+        println!("cargo:rustc-cfg=fixshade_explicit_draw");
+    }
     out
 }
 

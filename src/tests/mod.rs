@@ -2,6 +2,7 @@
 //! properties and accuracy sweeps (the smaller tests sit beside their code).
 
 mod coverage;
+mod dir;
 mod normalize;
 mod public_items;
 mod row_stores;
