@@ -525,10 +525,6 @@ impl DirectionalLight {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedDirectional {
     l: Unit3,
-    /// `l` for the per-pixel form.
-    dir: Dir,
-    /// `H` for the infinite viewer in the per-pixel form.
-    half_z: Option<Dir>,
 
     /// `H` for the infinite viewer (`normalise(L + (0, 0, 1))`), the same
     /// at every vertex, so computed here once.
@@ -549,11 +545,16 @@ impl PreparedLights for PreparedDirectional {
     const SCALAR: bool = true;
     #[inline]
     fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
-        let (l, nl) = (&self.dir, Dir::dot_d(at.n.d(), &self.dir));
+        // L and the infinite viewer's H in the per-pixel form here, not
+        // when the light is prepared: a draw without Phong shading keeps
+        // no code and no field for them (a few products a pixel, no
+        // root; made once a draw, they cost S1's configuration 364 bytes).
+        let l = &Dir::of_unit(self.l);
+        let nl = Dir::dot_d(at.n.d(), l);
         add_light_at::<S>(at, l, nl, FACTOR_ONE, &self.gains, acc, |nl, v| {
             if S::BLINN && at.view_z {
-                // 1 − N·H with the infinite viewer's H, made once.
-                Some(one_minus_q28(at.n.cos(self.half_z.as_ref()?)))
+                // 1 − N·H with the infinite viewer's H, made once a draw.
+                Some(one_minus_q28(at.n.cos(&Dir::of_unit(self.half?))))
             } else {
                 specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))
             }
@@ -565,13 +566,9 @@ impl LightSet for DirectionalLight {
     type Prepared = PreparedDirectional;
     fn prepare(&self, view: &Mat4, kd: Rgb, ks: Rgb) -> PreparedDirectional {
         let l = dir_to_eye(view, self.direction);
-        let dir = Dir::new(l.to_bits().map(i32::from));
-        let half = infinite_half(l);
         PreparedDirectional {
             l,
-            dir,
-            half_z: half.map(|h| Dir::new(h.to_bits().map(i32::from))),
-            half,
+            half: infinite_half(l),
             gains: Gains::new(self.diffuse, self.specular, kd, ks),
         }
     }
@@ -878,8 +875,6 @@ pub struct PreparedPoint<A: Falloff, const SPOT: bool> {
     gains: Gains,
     att: A::Prepared,
     cone: SpotCone,
-    /// The cone's axis for the per-pixel form (`+Z` for a point light).
-    axis: Dir,
     /// `pos` where it fits `i32`.
     pos32: Option<[i32; 3]>,
 }
@@ -970,7 +965,6 @@ fn point_factor_at<A: Falloff, const SPOT: bool>(
     pos32: Option<[i32; 3]>,
     att: &A::Prepared,
     cone: &SpotCone,
-    axis: &Dir,
 ) -> Option<(Dir, i32, u32)> {
     let p = at.position;
     // |pos| ≤ 2^62, |p| < 2^31: the difference cannot overflow. Where the
@@ -991,8 +985,9 @@ fn point_factor_at<A: Falloff, const SPOT: bool>(
     let l = Dir::new(d);
     let mut sf = A::factor(att, l.length(s));
     if SPOT {
-        // 1 − cos γ with cos γ = −L·S.
-        let delta = one_minus_q28(-l.cos(axis));
+        // 1 − cos γ with cos γ = −L·S (the axis in the per-pixel form
+        // here: a draw without Phong shading keeps no code for it).
+        let delta = one_minus_q28(-l.cos(&Dir::of_unit(cone.axis)));
         if delta > cone.delta_cutoff {
             return None;
         }
@@ -1012,9 +1007,8 @@ impl<A: Falloff, const SPOT: bool> PreparedLights for PreparedPoint<A, SPOT> {
     const SCALAR: bool = true;
     #[inline]
     fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
-        let (pos, cone) = ((&self.pos, self.pos32), (&self.cone, &self.axis));
-        if let Some((l, nl, sf)) =
-            point_factor_at::<A, SPOT>(at, pos.0, pos.1, &self.att, cone.0, cone.1)
+        let (pos, pos32) = (&self.pos, self.pos32);
+        if let Some((l, nl, sf)) = point_factor_at::<A, SPOT>(at, pos, pos32, &self.att, &self.cone)
         {
             add_light_at::<S>(at, &l, nl, sf, &self.gains, acc, |nl, v| {
                 specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))
@@ -1038,11 +1032,6 @@ fn prepare_point<A: Falloff, const SPOT: bool>(
         gains: Gains::new(l.diffuse, l.specular, kd, ks),
         att: l.attenuation.prepare(),
         cone: SpotCone { axis, ..cone },
-        axis: if SPOT {
-            Dir::new(axis.to_bits().map(i32::from))
-        } else {
-            Dir::Z
-        },
     }
 }
 
@@ -1309,14 +1298,7 @@ impl<A: Falloff> PreparedLights for PreparedArea<A> {
     const SCALAR: bool = true;
     fn shade_at<S: Specular>(&self, at: &PixelSurface, acc: &mut [u32; 3]) {
         self.add_samples(acc, |pos, sum| {
-            let f = point_factor_at::<A, false>(
-                at,
-                pos,
-                fits_i32(pos),
-                &self.att,
-                &Self::NO_CONE,
-                &Dir::Z,
-            );
+            let f = point_factor_at::<A, false>(at, pos, fits_i32(pos), &self.att, &Self::NO_CONE);
             if let Some((l, nl, sf)) = f {
                 add_light_at::<S>(at, &l, nl, sf, &self.gains, sum, |nl, v| {
                     specular_delta_of::<S>(nl, at.cos_nv, l.cos(v))

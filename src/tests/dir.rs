@@ -139,6 +139,31 @@ fn cosines_within_their_bounds() {
     println!("Dir::cos: worst error 2^{:.2}", worst.log2());
 }
 
+/// A unit vector's direction without a root within a relative 2⁻²⁶ of
+/// the exact reciprocal length, for every vector `normalize` makes.
+#[test]
+fn unit_vectors_without_a_root() {
+    let mut next = xorshift(0x4F1B_BCDC_BFA5_3E0B);
+    for _ in 0..100_000 {
+        let bits = 2 + (next() % 30) as u32;
+        let Some(u) = crate::normalize::normalize(vector(&mut next, bits)) else {
+            continue;
+        };
+        let d = Dir::of_unit(u);
+        let len: f64 = f(&d).iter().map(|c| c * c).sum::<f64>().sqrt();
+        let got = d.cos(&Dir::Z) as f64;
+        let z = d.d()[2] as f64 / len * 2f64.powi(30);
+        assert!(
+            (got - z).abs() <= 2f64.powi(30 - 26) + 1.0,
+            "{u:?}: {got} against {z}"
+        );
+        assert!(
+            (d.cos(&d) as f64 / 2f64.powi(30) - 1.0).abs() < 2f64.powi(-26),
+            "{u:?}"
+        );
+    }
+}
+
 /// `1 − x` in `Q.28` at its ends and beyond.
 #[test]
 fn one_minus_at_the_ends() {
