@@ -392,7 +392,8 @@ pub trait PreparedLights: Clone + core::fmt::Debug {
     /// Whether [`PreparedLights::shade_at`] is this set's own: Phong
     /// shading then lights each pixel in that form, and otherwise through
     /// [`PreparedLights::shade`] with a unit normal and view vector made at
-    /// each pixel. Every light of the crate has it.
+    /// each pixel. Every light of the crate has it; a set of your own
+    /// keeps the default (`false`: its `shade_at` is never called).
     const SCALAR: bool = false;
     /// [`PreparedLights::shade`] at a point in the per-pixel form (the
     /// kernel's; called only where [`PreparedLights::SCALAR`] holds).

@@ -1,5 +1,6 @@
 //! One light's term of the illumination equation (SPEC.md 3): the shaded
-//! point ([`Surface`]), the light's colour gains ([`Gains`]) and the
+//! point ([`Surface`], or per pixel [`PixelSurface`]), the light's colour
+//! gains ([`Gains`]) and the
 //! diffuse and specular term they add (`s·f·(Id·Kd·max(N·L, 0) +
 //! Is·Ks·spec)`). Below both the light kinds (`light`), which work out `L`,
 //! `s` and `f`, and the whole equation (`illumination`), which sums them;
@@ -384,57 +385,31 @@ pub(crate) fn add_light_at<S: Specular>(
 }
 
 /// `1 − x` in `Q.28` for the specular base `x` from the cosines (`Q.30`)
-/// between `N`, `L` and `V`: Blinn's `N·H` ([`blinn_delta`] with the
-/// [`HalfNorm`] of `L·V`), Phong's `R·V = 2(N·L)(N·V) − L·V`. `None`
-/// where `H` is undefined (`L + V = 0`).
+/// between `N`, `L` and `V`. Blinn's `N·H = (N·L + N·V)/|L + V|` with
+/// `|L + V| = 2·√W`, `W = (1 + L·V)/2`; Phong's `R·V = 2(N·L)(N·V) − L·V`.
+/// `None` where `H` is undefined: `L + V = 0` to within the cosine's
+/// rounding (`|L + V| < 2⁻¹⁰`, a light straight behind the point as the
+/// viewer sees it).
 #[inline(always)]
 pub(crate) fn specular_delta_of<S: Specular>(nl: i32, nv: i32, lv: i32) -> Option<u32> {
-    if S::BLINN {
-        blinn_delta(nl, nv, HalfNorm::of(lv)?)
-    } else {
-        // |2(N·L)(N·V) − L·V| ≤ 3 + ε: i64 in Q.30.
-        let x = (mul_i32(nl, nv) >> 29) - lv as i64;
-        Some(one_minus_q28(x.clamp(-(1 << 30), 1 << 30) as i32))
-    }
-}
-
-/// `1/|L + V|` for unit `L`, `V`: `|L + V| = 2·√W` with `W = (1 + L·V)/2`,
-/// and `1/√W = r·2^(k/2 − 30)` (`r` [`rsqrt_q`]'s, `k` an even shift).
-/// What Blinn's `N·H` divides by: the same at every pixel for a
-/// directional light and the infinite viewer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct HalfNorm {
-    r: u32,
-    k: u32,
-}
-
-impl HalfNorm {
-    /// The half vector's length from `L·V` (`Q.30`); `None` where `L + V
-    /// = 0` to within the cosine's rounding (`|L + V| < 2⁻¹⁰`: a light
-    /// straight behind the point as the viewer sees it).
-    #[inline(always)]
-    pub(crate) fn of(lv: i32) -> Option<HalfNorm> {
+    let x = if S::BLINN {
         // W in Q.32, L·V taken below 1 so that it fits: 0 ..= 2³² − 2.
         let w = (lv.clamp(-(1 << 30), (1 << 30) - 1) + (1 << 30)) as u32 * 2;
         if w < 1 << 10 {
             return None;
         }
-        // An even shift k ≤ 30 into [2³⁰, 2³²): r = 2³⁰/√(w·2ᵏ/2³²).
+        // An even shift k ≤ 30 into [2³⁰, 2³²): r = 2³⁰/√(w·2ᵏ/2³²), so
+        // 1/√W = r·2^(k/2 − 30).
         let k = platform::leading_zeros(w) & !1;
-        Some(HalfNorm {
-            r: rsqrt_q(w << k),
-            k,
-        })
-    }
-}
-
-/// Blinn's `1 − N·H` (`Q.28`) from `N·L` and `N·V` (`Q.30`): `N·H = s/√W`
-/// with `s = (N·L + N·V)/2`, `|s| ≤ 2³⁰·(1 + 2⁻²²)`; in `Q.30`
-/// `s·r·2^(k/2 − 30)`, `|s·r| < 2⁶²` shifted right by at least 15.
-#[inline(always)]
-pub(crate) fn blinn_delta(nl: i32, nv: i32, h: HalfNorm) -> Option<u32> {
-    let s = (nl >> 1) + (nv >> 1);
-    let x = mul_i32_u32(s, h.r) >> (30 - h.k / 2);
+        let r = rsqrt_q(w << k);
+        // N·H = s/√W with s = (N·L + N·V)/2, |s| ≤ 2³⁰·(1 + 2⁻²²): in Q.30
+        // s·r·2^(k/2 − 30), |s·r| < 2⁶² shifted right by at least 15.
+        let s = (nl >> 1) + (nv >> 1);
+        mul_i32_u32(s, r) >> (30 - k / 2)
+    } else {
+        // |2(N·L)(N·V) − L·V| ≤ 3 + ε: i64 in Q.30.
+        (mul_i32(nl, nv) >> 29) - lv as i64
+    };
     Some(one_minus_q28(x.clamp(-(1 << 30), 1 << 30) as i32))
 }
 

@@ -1,7 +1,9 @@
 //! Normalisation without floats: unit vectors (and lengths) from integer
 //! vectors, and the cosine of the angle between two ([`one_minus_cos`],
 //! Blinn's `1 − N·H`), by a table-seeded reciprocal square root and one
-//! Newton step.
+//! Newton step; and, for Phong shading's pixels, directions kept as
+//! integer vectors with the reciprocals of their lengths ([`Dir`]), whose
+//! cosines need no unit vector.
 //!
 //! # Method
 //!

@@ -56,8 +56,6 @@ fn reduced_directions_hold_their_ranges() {
             let exact = v[k] as f64 / 2f64.powi(s);
             assert!((c[k] as f64 - exact).abs() <= 0.5, "{v:?}: {c:?} s {s}");
         }
-        let len: f64 = f(&d).iter().map(|c| c * c).sum::<f64>().sqrt();
-        let want = 2f64.powi(44) / len;
         let rel = |got: f64, want: f64| (got / want - 1.0).abs();
         // u from rsqrt_q (2^-23) and the halving of its Q2.30 form.
         assert!(
@@ -73,7 +71,6 @@ fn reduced_directions_hold_their_ranges() {
             "{v:?}: {}",
             d.length(s)
         );
-        assert!(rel(2f64.powi(44) / len, want) < 1e-12);
     }
     // Wide vectors: the same through the 30-bit step.
     for _ in 0..20_000 {
