@@ -78,7 +78,8 @@ impl DivInt for i64 {
 
 /// `(⌊n/d⌋, n mod d)` for `d > 0`: the core's division on a 64-bit core;
 /// on a 32-bit one, where a 64-bit division is a library routine of
-/// about a kilobyte, from 32-bit divisions ([`div_rem_u64_by_digits`]).
+/// about a kilobyte, from 32-bit divisions or shifts and subtractions
+/// ([`div_rem_u64_by_digits`]).
 #[inline(never)]
 pub(crate) fn div_rem_u64(n: u64, d: u64) -> (u64, u64) {
     debug_assert!(d > 0);
@@ -88,12 +89,15 @@ pub(crate) fn div_rem_u64(n: u64, d: u64) -> (u64, u64) {
     div_rem_u64_by_digits(n, d)
 }
 
-/// [`div_rem_u64`] on a 32-bit core (`d > 0`): a divisor below 2³² takes
-/// the high word's quotient by one 32-bit division and the rest by
-/// [`div_rem_digits`]; a larger one, whose quotient has at most 32 bits,
-/// a shift and subtraction a bit.
+/// [`div_rem_u64`] on a 32-bit core (`d > 0`): where the core divides
+/// 32-bit numbers, a divisor below 2³² takes the high word's quotient by
+/// one 32-bit division and the rest by [`div_rem_digits`]; otherwise a
+/// shift and subtraction a bit of the quotient (where the core divides in
+/// software, its divisions are only the rare path's and a few a draw,
+/// and the library's 32-bit division and the digits' code took a
+/// kilobyte of flash).
 fn div_rem_u64_by_digits(n: u64, d: u64) -> (u64, u64) {
-    if d >> 32 == 0 {
+    if platform::hardware_div32() && d >> 32 == 0 {
         let d = d as u32;
         let hi = (n >> 32) as u32;
         let (qh, rh) = (hi / d, hi % d);
@@ -103,7 +107,8 @@ fn div_rem_u64_by_digits(n: u64, d: u64) -> (u64, u64) {
     if n < d {
         return (0, n);
     }
-    // d·2ᵏ has n's top bit: the quotient has at most k + 1 bits.
+    // d·2ᵏ has n's top bit: the quotient has at most k + 1 bits (a
+    // divisor of 2³² or more: at most 32).
     let k = d.leading_zeros() - n.leading_zeros();
     let (mut rem, mut div, mut q) = (n, d << k, 0u64);
     for _ in 0..=k {
