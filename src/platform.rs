@@ -279,13 +279,35 @@ pub(crate) const fn leading_zeros(x: u32) -> u32 {
     }
 }
 
+/// Leading zeros of a nibble.
+const NIBBLE: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
+
+/// [`leading_zeros`] of `x ∈ [2²², 2³¹)` (a vertex's `W` in the vertex
+/// stage's 32-bit form: 1 to 9). On ARMv6-M one step of five and the top
+/// nibble's table: `x` is then in `[2²⁷, 2³²)`, whose leading zeros (0 to
+/// 4) the nibble above bit 27 gives.
+#[inline(always)]
+pub(crate) const fn leading_zeros_of_w(x: u32) -> u32 {
+    debug_assert!(x >= 1 << 22 && x < 1 << 31);
+    if SOFT_MUL64 {
+        leading_zeros_of_w_step(x)
+    } else {
+        x.leading_zeros()
+    }
+}
+
+/// [`leading_zeros_of_w`] in one step and the nibble's table.
+#[inline(always)]
+const fn leading_zeros_of_w_step(x: u32) -> u32 {
+    let (x, n) = if x >> 27 == 0 { (x << 5, 5) } else { (x, 0) };
+    n + NIBBLE[(x >> 28) as usize] as u32
+}
+
 /// [`leading_zeros`] in three halving steps and a table of the top
-/// nibble's.
+/// nibble's (`NIBBLE[0]` not read: the top nibble is not 0 once the steps
+/// are done, `x` being non-zero).
 #[inline(always)]
 const fn leading_zeros_halving(x: u32) -> u32 {
-    /// Leading zeros of a nibble (`NIBBLE[0]` unused: the top nibble is
-    /// not 0 once the steps are done, `x` being non-zero).
-    const NIBBLE: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
     if x == 0 {
         return 32;
     }
@@ -2203,7 +2225,8 @@ pub(crate) fn keep_loop_rolled() {
 #[cfg(test)]
 mod tests {
     /// The halving steps count as the instruction does: zero, every power
-    /// of two and its neighbours, and a sweep of other values.
+    /// of two and its neighbours, and a sweep of other values; so does the
+    /// one step of `W`'s range, within it.
     #[test]
     fn leading_zeros_forms_agree() {
         let mut xs = vec![0u32, 1, u32::MAX];
@@ -2213,6 +2236,13 @@ mod tests {
         xs.extend((0..100_000u32).map(|i| i.wrapping_mul(0x9E37_79B9) >> (i % 32)));
         for x in xs {
             assert_eq!(super::leading_zeros_halving(x), x.leading_zeros(), "{x:#x}");
+            if (1 << 22..1 << 31).contains(&x) {
+                assert_eq!(
+                    super::leading_zeros_of_w_step(x),
+                    x.leading_zeros(),
+                    "{x:#x}"
+                );
+            }
         }
     }
 }

@@ -376,10 +376,17 @@ fn gradient<const N: usize>(v: &[Vtx<N>; 3], k: usize, lam: [i32; 4]) -> Option<
 }
 
 /// `round((gx·oₓ + gy·o_y)/16)` (`|o| ≤ 8`): the plane's change from a
-/// vertex to its pixel's centre.
+/// vertex to its pixel's centre. Where a 64-bit product is made from
+/// 16-bit ones and both gradients lie within ±2²⁷ (nearly every plane's),
+/// the sum lies within 2³¹: the same floor in 32-bit arithmetic.
 #[inline(always)]
 fn offset(gx: i32, gy: i32, o: (i32, i32)) -> i32 {
-    dot2_round16(gx, o.0, gy, o.1)
+    let small = |g: i32| (g.wrapping_add(1 << 27) as u32) < 1 << 28;
+    if platform::SOFT_MUL64 && small(gx) && small(gy) {
+        (gx * o.0 + gy * o.1 + 8) >> 4
+    } else {
+        dot2_round16(gx, o.0, gy, o.1)
+    }
 }
 
 /// [`gradient`]'s values from the exact quotients `round(256·N/A)`, `N` the

@@ -343,7 +343,8 @@ impl Rows {
     /// snapped, and its rounding is the estimate's.
     #[inline(always)]
     fn divided([x14, y14, z14, w14]: [i32; 4]) -> [i32; 3] {
-        let n = platform::leading_zeros(w14 as u32);
+        // w₁₄ ∈ [2²², 2³¹): every caller's (`Rows::contained`, `tested`).
+        let n = platform::leading_zeros_of_w(w14 as u32);
         let d = (w14 as u32) << n;
         let r = recip_fast(d);
         // `⌊p/2³¹⌋` of each product `p` is all that is read of it.
