@@ -526,7 +526,6 @@ impl DirectionalLight {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PreparedDirectional {
     l: Unit3,
-
     /// `H` for the infinite viewer (`normalise(L + (0, 0, 1))`), the same
     /// at every vertex, so computed here once.
     half: Option<Unit3>,

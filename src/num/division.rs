@@ -79,14 +79,14 @@ impl DivInt for i64 {
 /// `(⌊n/d⌋, n mod d)` for `d > 0`: the core's division on a 64-bit core;
 /// on a 32-bit one, where a 64-bit division is a library routine of
 /// about a kilobyte, from 32-bit divisions or shifts and subtractions
-/// ([`div_rem_u64_by_digits`]).
+/// ([`div_rem_u64_in_32_bits`]).
 #[inline(never)]
 pub(crate) fn div_rem_u64(n: u64, d: u64) -> (u64, u64) {
     debug_assert!(d > 0);
     if platform::NATIVE_DIV64 || d == 0 {
         return (n.checked_div(d).unwrap_or(0), n.checked_rem(d).unwrap_or(n));
     }
-    div_rem_u64_by_digits(n, d)
+    div_rem_u64_in_32_bits(n, d)
 }
 
 /// [`div_rem_u64`] on a 32-bit core (`d > 0`): where the core divides
@@ -96,7 +96,7 @@ pub(crate) fn div_rem_u64(n: u64, d: u64) -> (u64, u64) {
 /// software, its divisions are only the rare path's and a few a draw,
 /// and the library's 32-bit division and the digits' code took a
 /// kilobyte of flash).
-fn div_rem_u64_by_digits(n: u64, d: u64) -> (u64, u64) {
+fn div_rem_u64_in_32_bits(n: u64, d: u64) -> (u64, u64) {
     if platform::hardware_div32() && d >> 32 == 0 {
         let d = d as u32;
         let hi = (n >> 32) as u32;
@@ -408,16 +408,18 @@ fn chord(d: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{
-        div_rem_u64_by_digits, floor_div_rem, floor_div_shifted, floor_third, recip_fast,
+        div_rem_u64_in_32_bits, floor_div_rem, floor_div_shifted, floor_third, recip_fast,
         third_by_shifts, Divisor,
     };
     use crate::tests::xorshift;
 
     /// The 32-bit cores' 64-bit division is the division: divisors of
-    /// every size (below 2³² by digits, above by steps), normalised or
-    /// not, numerators at both ends and around the divisor's multiples.
+    /// every size (below 2³² by digits where the core divides 32-bit
+    /// numbers, by steps otherwise and above 2³²; `FIXSHADE_LIMBS=1` takes
+    /// the steps throughout), normalised or not, numerators at both ends
+    /// and around the divisor's multiples.
     #[test]
-    fn digit_division_is_the_division() {
+    fn division_in_32_bits_is_the_division() {
         let mut next = xorshift(0x243f_6a88_85a3_08d3);
         let mut ds: Vec<u64> = vec![1, 2, 3, 6, 0xFFFF, 0x1_0000, 0x8000_0000, 0xFFFF_FFFF];
         ds.extend([1 << 32, (1 << 32) + 1, u64::MAX, 1 << 63, (1 << 46) - 1]);
@@ -432,7 +434,7 @@ mod tests {
                 ns.extend([m, m.wrapping_sub(1), m.wrapping_add(1)]);
             }
             for n in ns {
-                assert_eq!(div_rem_u64_by_digits(n, d), (n / d, n % d), "{n} / {d}");
+                assert_eq!(div_rem_u64_in_32_bits(n, d), (n / d, n % d), "{n} / {d}");
                 count += 1;
             }
         }
