@@ -9,7 +9,7 @@
 use crate::color::Rgb;
 use crate::material::Specular;
 use crate::normalize::{normalize, one_minus_cos, one_minus_q28, rsqrt_q, Dir};
-use crate::num::widening::{mul_i32, mul_i32_u32};
+use crate::num::widening::{mul_i32, mul_i32_u32, saturate_i32, shr_to_i32};
 use crate::platform;
 use crate::specular_table::{pow_from_delta, Exponent};
 use crate::vector::{Unit3, Vec3};
@@ -392,25 +392,28 @@ pub(crate) fn add_light_at<S: Specular>(
 /// viewer sees it).
 #[inline(always)]
 pub(crate) fn specular_delta_of<S: Specular>(nl: i32, nv: i32, lv: i32) -> Option<u32> {
+    // (`one_minus_q28` takes the value within ±2³⁰: out of `i32`, the
+    // value saturates.)
     let x = if S::BLINN {
         // W in Q.32, L·V taken below 1 so that it fits: 0 ..= 2³² − 2.
         let w = (lv.clamp(-(1 << 30), (1 << 30) - 1) + (1 << 30)) as u32 * 2;
         if w < 1 << 10 {
             return None;
         }
-        // An even shift k ≤ 30 into [2³⁰, 2³²): r = 2³⁰/√(w·2ᵏ/2³²), so
-        // 1/√W = r·2^(k/2 − 30).
+        // An even shift k into [2³⁰, 2³²), at most 20 as w ≥ 2¹⁰: r =
+        // 2³⁰/√(w·2ᵏ/2³²), so 1/√W = r·2^(k/2 − 30).
         let k = platform::leading_zeros(w) & !1;
         let r = rsqrt_q(w << k);
         // N·H = s/√W with s = (N·L + N·V)/2, |s| ≤ 2³⁰·(1 + 2⁻²²): in Q.30
-        // s·r·2^(k/2 − 30), |s·r| < 2⁶² shifted right by at least 15.
+        // s·r·2^(k/2 − 30), |s·r| < 2⁶² shifted right by 20 to 30.
         let s = (nl >> 1) + (nv >> 1);
-        mul_i32_u32(s, r) >> (30 - k / 2)
+        let p = mul_i32_u32(s, r);
+        shr_to_i32(p, 30 - k / 2).unwrap_or(if p < 0 { i32::MIN } else { i32::MAX })
     } else {
         // |2(N·L)(N·V) − L·V| ≤ 3 + ε: i64 in Q.30.
-        (mul_i32(nl, nv) >> 29) - lv as i64
+        saturate_i32((mul_i32(nl, nv) >> 29) - lv as i64)
     };
-    Some(one_minus_q28(x.clamp(-(1 << 30), 1 << 30) as i32))
+    Some(one_minus_q28(x))
 }
 
 /// `1 − x` in `Q.28` for the specular base `x` (`N·H` or `R·V`), computed as

@@ -121,8 +121,9 @@ pub(crate) fn rsqrt_q(x: u32) -> u32 {
     // so < 2^31 and the difference below fits i32.
     let p = mul_hi32(x, sq);
     // Residual 1 − X·y0², Q.30. Measured |e| < 2^18.7; the clamp never acts,
-    // it only makes the bound below unconditional.
-    let e = ((1i32 << 30) - p as i32).clamp(-(1 << 20), 1 << 20);
+    // it only makes the bound below unconditional. (A 21-bit signed range,
+    // which ARMv7-M clamps in one instruction, `SSAT`.)
+    let e = ((1i32 << 30) - p as i32).clamp(-(1 << 20), (1 << 20) - 1);
     // Newton: y1 = y0 + y0·e/2. (e >> 6) is Q.24 with |·| ≤ 2^14, y0 < 2^16,
     // so the product is below 2^30 in magnitude; Q.39 → Q.30 and /2 is >> 10.
     let corr = (y0 as i32 * (e >> 6)) >> 10; // |corr| ≤ 2^20
@@ -274,11 +275,19 @@ impl Dir {
     /// is known before [`Dir::new`] takes the root.)
     #[inline(always)]
     pub(crate) fn reduce(v: [i32; 3]) -> Option<([i32; 3], i32)> {
-        let m = v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs();
-        if m == 0 {
-            return None;
-        }
-        // The top bit of the largest magnitude; every |vᵢ| < 2^(top + 1).
+        // `c ^ (c >> 31)` is `|c|`, or `|c| − 1` for a negative `c` (one
+        // instruction on ARMv7-M, against four for the magnitude): the top
+        // bit of their union is the largest magnitude's, or one lower
+        // where that is a negative power of two, `−2ᵏ`, which is then
+        // reduced to `−2¹⁴`; so every |vᵢ| ≤ 2^(top + 1) and the largest
+        // lands in [2¹³, 2¹⁴] either way.
+        let m = [0, 1, 2].map(|i| (v[i] ^ (v[i] >> 31)) as u32);
+        let m = match m[0] | m[1] | m[2] {
+            0 if v == [0; 3] => return None,
+            // Components of 0 and −1 only: top bit 0, as for 1.
+            0 => 1,
+            m => m,
+        };
         let s = 31 - platform::leading_zeros(m) as i32 - 13;
         let d = if s > 0 {
             // vᵢ >> (s − 1) lies within ±2¹⁵: adding 1 cannot overflow, and

@@ -26,6 +26,7 @@ use crate::depth::DepthTest;
 use crate::illumination::{Lighting, Viewer};
 use crate::light::LightSet;
 use crate::material::Specular;
+use crate::num::widening::saturate_i32;
 use crate::planes::{Planes, Row};
 use crate::platform;
 use crate::setup::Rect;
@@ -402,7 +403,7 @@ impl<S: Specular, V: Viewer, L: LightSet> Shader<7> for Phong<'_, S, V, L> {
             Some(o) => [4, 5, 6].map(|k| (a[k] >> 4).saturating_add(o[k - 4])),
             None => [4, 5, 6].map(|k| {
                 let v = (((a[k] >> 4) as i64) << self.shift) + self.origin[k - 4];
-                v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+                saturate_i32(v)
             }),
         };
         let shade = self.lighting.shade_pixel(p, [a[1], a[2], a[3]]);

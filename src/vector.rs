@@ -28,7 +28,7 @@
 //! of values that are each below 2⁷ and saturates the result to `I8F24`.
 
 use crate::num::division::DivInt;
-use crate::num::widening::{mul_i32, mul_i32_i16};
+use crate::num::widening::{mul_i32, mul_i32_i16, saturate_i32};
 use crate::num::Wide;
 use crate::platform;
 use fixed::types::{I2F14, I8F24};
@@ -732,7 +732,7 @@ impl Mat4 {
             + mul_i32_i16(m[2], q[2])
             + ((m[3] as i64) << Q15);
         let r = ((acc >> (Q15 - 1)) + 1) >> 1;
-        r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+        saturate_i32(r)
     }
 
     /// Applies the 3 × 3 linear part to a direction (w = 0), returning raw
@@ -763,7 +763,7 @@ impl Mat4 {
 #[inline]
 pub(crate) fn sat_shift24(acc: i64) -> i32 {
     let r = (acc >> (COORD_FRAC - 1)).saturating_add(1) >> 1;
-    r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    saturate_i32(r)
 }
 
 impl core::ops::Mul for Mat4 {

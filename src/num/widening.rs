@@ -166,6 +166,21 @@ pub(crate) fn shr_to_i32(p: i64, k: u32) -> Option<i32> {
     ((hi >> k) == (q >> 31)).then_some(q)
 }
 
+/// `x` clamped to `i32`'s range: on a 32-bit core a comparison of the
+/// high word with the low word's sign, where an `i64` clamp is two 64-bit
+/// comparisons.
+#[inline(always)]
+pub(crate) fn saturate_i32(x: i64) -> i32 {
+    let lo = x as i32;
+    if (x >> 32) as i32 == lo >> 31 {
+        lo
+    } else if x < 0 {
+        i32::MIN
+    } else {
+        i32::MAX
+    }
+}
+
 /// [`mul_u32_i16_shr`]'s value from the halves' products `h = aₕ·b` and `l = aₗ·b` (each below 2³¹ in
 /// magnitude, and of `b`'s sign) without their 64-bit sum: for `k ≥ 16`
 /// it is `⌊(h + ⌊l/2¹⁶⌋)/2ᵏ⁻¹⁶⌋` (the sum below `(2¹⁵ − 1)(2¹⁶ − 1) +
@@ -357,6 +372,21 @@ mod tests {
 
     /// The squares' sum and the 12-bit product take the same values in
     /// both forms, over their operands' ranges and at their ends.
+    /// `saturate_i32` is the clamp to `i32`'s range, at its ends and at
+    /// random values of every magnitude.
+    #[test]
+    fn saturate_i32_is_the_clamp() {
+        let ends = [i64::MIN, i64::MAX, 0, -1, 1];
+        let near = [i32::MIN as i64, i32::MAX as i64]
+            .into_iter()
+            .flat_map(|e| [e - 1, e, e + 1]);
+        let random = operands().map(|v| v as i64);
+        for x in ends.into_iter().chain(near).chain(random) {
+            let want = x.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+            assert_eq!(super::saturate_i32(x), want, "{x}");
+        }
+    }
+
     #[test]
     fn normalisation_products_agree() {
         let mut next = xorshift(0x2545_F491_4F6C_DD1D);

@@ -44,6 +44,12 @@ fn reduced_directions_hold_their_ranges() {
         let bits = 1 + (next() % 32) as u32;
         cases.push(vector(&mut next, bits));
     }
+    // A negative power of two as the largest magnitude, which the top bit
+    // of `c ^ (c >> 31)` puts one lower, beside smaller components.
+    for k in 0..31 {
+        let p = -(1i32 << k);
+        cases.extend([[p, 0, 0], [0, p, -1], [p, !p, p >> 1], [p / 2, p, 0]]);
+    }
     for v in cases {
         let Some((d, s)) = dir(v) else {
             assert_eq!(v, [0; 3]);
