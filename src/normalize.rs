@@ -350,7 +350,9 @@ impl Dir {
     pub(crate) fn of_unit(u: Unit3) -> Dir {
         let d = u.to_bits().map(i32::from);
         let dd = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) as u32;
-        let e = (dd as i32 - (1 << 28)).clamp(-(1 << 16), 1 << 16);
+        // (Within 2¹⁶ − 1 above: one `SSAT` on ARMv7-M; a unit vector
+        // within 2⁻¹³ never reaches either end.)
+        let e = (dd as i32 - (1 << 28)).clamp(-(1 << 16), (1 << 16) - 1);
         Dir {
             d,
             dd,
@@ -436,8 +438,9 @@ impl Dir {
 /// taken within [−1, 1].
 #[inline(always)]
 pub(crate) fn one_minus_q28(x: i32) -> u32 {
-    // 2³⁰ − x ∈ [0, 2³¹] (u32).
-    let x = x.clamp(-(1 << 30), 1 << 30);
+    // 2³⁰ − x ∈ [1, 2³¹] (u32). The upper end 2³⁰ − 1 rather than 2³⁰
+    // (one `SSAT` on ARMv7-M) gives the same result: (1 + 2) >> 2 = 0.
+    let x = x.clamp(-(1 << 30), (1 << 30) - 1);
     ((1u32 << 30).wrapping_sub(x as u32) + 2) >> 2
 }
 

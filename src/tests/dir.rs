@@ -171,6 +171,7 @@ fn unit_vectors_without_a_root() {
 #[test]
 fn one_minus_at_the_ends() {
     assert_eq!(one_minus_q28(1 << 30), 0);
+    assert_eq!(one_minus_q28((1 << 30) - 1), 0);
     assert_eq!(one_minus_q28(i32::MAX), 0);
     assert_eq!(one_minus_q28(0), 1 << 28);
     assert_eq!(one_minus_q28(-(1 << 30)), 1 << 29);
