@@ -174,6 +174,21 @@ pub trait Falloff: Copy + core::fmt::Debug {
     /// The factor `f` in `Q.15` (0 ..= 2¹⁵) at distance `d` (`I40F24` raw
     /// units, i.e. `Q.24`).
     fn factor(p: &Self::Prepared, d_q24: u64) -> u32;
+
+    /// [`Falloff::factor`] at the distance `d()`, made only where the
+    /// falloff reads it (`d` is called at most once): Phong shading's
+    /// pixels make a light's distance for this alone.
+    ///
+    /// ```
+    /// use fixshade::light::{Attenuation, Falloff};
+    /// let constant = Attenuation::new(2.0, 0.0, 0.0).unwrap().prepare();
+    /// // 1 / 2 at any distance, which is not asked for.
+    /// assert_eq!(Attenuation::factor_of(&constant, || unreachable!()), 1 << 14);
+    /// ```
+    #[inline(always)]
+    fn factor_of(p: &Self::Prepared, d: impl FnOnce() -> u64) -> u32 {
+        Self::factor(p, d())
+    }
 }
 
 /// No attenuation: `f = 1`; the distance is not used.
@@ -328,12 +343,20 @@ impl Falloff for Attenuation {
         *self
     }
 
+    /// Without the distance where `c1 = c2 = 0` (a spot light's usual
+    /// attenuation): [`Falloff::factor`] does not read it there.
+    #[inline(always)]
+    fn factor_of(p: &Attenuation, d: impl FnOnce() -> u64) -> u32 {
+        let constant = p.c1.is_zero() && p.c2.is_zero();
+        Self::factor(p, if constant { 0 } else { d() })
+    }
+
     #[inline]
     fn factor(p: &Attenuation, d_q24: u64) -> u32 {
         // Exponents: c1, c2 ∈ [−63, 0] (frac 32), d ∈ [−55, 8],
         // c1·d ∈ [−87, 40], c2·d·d ∈ [−111, 80]: far inside MiniFloat's
         // range, so the clamps of `from_u64` and `mul` are left out here.
-        let den = if p.c1 == MiniFloat::ZERO && p.c2 == MiniFloat::ZERO {
+        let den = if p.c1.is_zero() && p.c2.is_zero() {
             // A constant factor (a spot light's, often): no distance.
             p.c0
         } else {
@@ -983,7 +1006,7 @@ fn point_factor_at<A: Falloff, const SPOT: bool>(
         return None;
     }
     let l = Dir::new(d);
-    let mut sf = A::factor(att, l.length(s));
+    let mut sf = A::factor_of(att, || l.length(s));
     if SPOT {
         // 1 − cos γ with cos γ = −L·S (the axis in the per-pixel form
         // here: a draw without Phong shading keeps no code for it).

@@ -90,6 +90,13 @@ impl MiniFloat {
         }
     }
 
+    /// Whether this is 0: a zero mantissa, whose exponent every operation
+    /// makes 0 ([`MiniFloat::ZERO`]).
+    #[inline(always)]
+    pub(crate) const fn is_zero(self) -> bool {
+        self.m == 0
+    }
+
     /// `v · 2^-frac`, truncated to 32 significant bits; saturated or
     /// flushed to zero where the exponent leaves [`MiniFloat::E_MIN`,
     /// `MiniFloat::E_MAX`] (any `frac` is accepted).
