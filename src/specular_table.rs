@@ -418,7 +418,13 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     // lz ∈ [4, 32] and k ∈ [0, 28]. If x − 1 > 0 its top bit is bit 31 − lz,
     // so 2^(27−k) ≤ x − 1 < 2^(28−k), i.e. 2^(27−k) < x ≤ 2^(28−k); if
     // x = 1 then k = 28. Either way x << k ∈ (2^27, 2^28]: no bits lost.
-    let k = platform::leading_zeros(x - 1) - 4;
+    // (Where the core counts leading zeros in software, x > 2^27, the
+    // usual case, takes k = 0 without the count.)
+    let k = if platform::SOFT_MUL64 && x > 1 << 27 {
+        0
+    } else {
+        platform::leading_zeros(x - 1) - 4
+    };
     let m = x << k;
     // d = 1 − m ∈ [0, 2^27) in Q.28, i.e. [0, 1/2). For k = 0, d = δ.
     let d = ONE_Q28 - m;
@@ -457,12 +463,10 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     // u = n·t in Q.24, t = s + k·ln 2. Saturate at u ≥ 16 (e^−16 < 2^−23).
     let u_q24 = if k == 0 {
         // t = s in Q.32; n in Q.8: product in Q.40, < 2^20·2^32 = 2^52.
-        let p = mul_u32(n_q8, s);
-        if p >= 16u64 << 40 {
-            return 0;
+        match q40_to_q24(n_q8, s) {
+            Some(u) => u,
+            None => return 0,
         }
-        // p < 2^44 so p >> 16 < 2^28.
-        (p >> 16) as u32
     } else {
         // t in Q.27: s >> 5 < 2^27; k·LN2_Q27 ≤ 28·93032640 < 2.61·10^9;
         // sum < 2.74·10^9 < 2^32.
@@ -477,6 +481,35 @@ pub(crate) fn pow_from_delta(delta_q28: u32, n: Exponent) -> u16 {
     };
 
     exp_neg_q24(u_q24)
+}
+
+/// `⌊n·s/2¹⁶⌋` for `n ≤ 2²⁰` (`Q.8`) and `s` (`Q.32`): `u` in `Q.24`, or
+/// `None` from `u ≥ 16` on (`e^−16` is below the result's unit). Where a
+/// 64-bit product is a library call and `n < 2¹⁶` (an exponent below 256),
+/// from `s`'s 16-bit halves ([`q40_to_q24_halves`]); else from the 64-bit
+/// product. The same value either way.
+#[inline(always)]
+fn q40_to_q24(n: u32, s: u32) -> Option<u32> {
+    if platform::SOFT_MUL64 && n < 1 << 16 {
+        q40_to_q24_halves(n, s)
+    } else {
+        let p = mul_u32(n, s);
+        // p < 2^44 once tested, so p >> 16 < 2^28.
+        (p < 16u64 << 40).then_some((p >> 16) as u32)
+    }
+}
+
+/// [`q40_to_q24`] for `n < 2¹⁶`: `⌊n·s/2¹⁶⌋ = n·sₕ + ⌊n·sₗ/2¹⁶⌋`, two
+/// 32-bit products, and `p ≥ 16·2⁴⁰` is that quotient `≥ 2²⁸`.
+#[inline(always)]
+fn q40_to_q24_halves(n: u32, s: u32) -> Option<u32> {
+    let hi = n * (s >> 16);
+    if hi >= 1 << 28 {
+        return None;
+    }
+    // hi < 2^28 and the low term < 2^16: no overflow.
+    let q = hi + ((n * (s & 0xFFFF)) >> 16);
+    (q < 1 << 28).then_some(q)
 }
 
 /// `e^−u` in `Q.15` for `u = u_q24 / 2²⁴ ∈ [0, 16)`.
@@ -541,6 +574,36 @@ pub(crate) fn pow_from_cos(x_q28: i32, n: Exponent) -> u16 {
 
 #[cfg(test)]
 mod tests {
+    /// The two forms of `u = n·t` agree, and with the 64-bit product:
+    /// every exponent below 2¹⁶ at its ends and at random `s`, and the
+    /// threshold `u ≥ 16` on both sides.
+    #[test]
+    fn q24_forms_agree() {
+        use super::{q40_to_q24, q40_to_q24_halves};
+        let mut next = crate::tests::xorshift(0x5eed_0f_7a1e_u64);
+        let ns = [0u32, 1, 255, 256, 1 << 15, (1 << 16) - 1];
+        for i in 0..200_000u32 {
+            let n = if i < 6 {
+                ns[i as usize]
+            } else {
+                (next() as u32) >> (16 + i % 16)
+            };
+            let s = match i % 4 {
+                0 => u32::MAX,
+                1 => (next() as u32) >> (i % 32),
+                // Near the threshold: n·s ≈ 2^44.
+                _ => {
+                    ((1u64 << 44) / (n.max(1) as u64)).min(u32::MAX as u64) as u32
+                        ^ (next() as u32 & 3)
+                }
+            };
+            let p = n as u64 * s as u64;
+            let want = (p < 16 << 40).then_some((p >> 16) as u32);
+            assert_eq!(q40_to_q24_halves(n, s), want, "{n} {s}");
+            assert_eq!(q40_to_q24(n, s), want, "{n} {s}");
+        }
+    }
+
     /// The example from the docs of `Exponent::ZERO`.
     #[test]
     fn doc_exponent_zero() {
