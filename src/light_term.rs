@@ -402,7 +402,13 @@ pub(crate) fn specular_delta_of<S: Specular>(nl: i32, nv: i32, lv: i32) -> Optio
         }
         // An even shift k into [2³⁰, 2³²), at most 20 as w ≥ 2¹⁰: r =
         // 2³⁰/√(w·2ᵏ/2³²), so 1/√W = r·2^(k/2 − 30).
-        let k = platform::leading_zeros(w) & !1;
+        // (Where the core counts leading zeros in software, the usual
+        // W ≥ 2³⁰ takes k = 0 without the count.)
+        let k = if platform::SOFT_MUL64 && w >= 1 << 30 {
+            0
+        } else {
+            platform::leading_zeros(w) & !1
+        };
         let r = rsqrt_q(w << k);
         // N·H = s/√W with s = (N·L + N·V)/2, |s| ≤ 2³⁰·(1 + 2⁻²²): in Q.30
         // s·r·2^(k/2 − 30), |s·r| < 2⁶² shifted right by 20 to 30.

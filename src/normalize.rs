@@ -72,7 +72,8 @@
 //! `normalize(v).unwrap_or(Unit3::ZERO)`). No input panics or overflows.
 
 use crate::num::widening::{
-    mul_hi32, mul_i32_u32, mul_i32_u32_shr31, mul_u32, mul_u32_shr12, sum_sq3_shr10,
+    mul_hi32, mul_i32_u32, mul_i32_u32_shr26, mul_i32_u32_shr31, mul_u32, mul_u32_shr12,
+    sum_sq3_shr10,
 };
 use crate::platform;
 use crate::vector::{Unit3, UNIT_ONE};
@@ -387,7 +388,7 @@ impl Dir {
     #[inline(always)]
     pub(crate) fn cos_of_dot(&self, dot: i32, o: &Dir) -> i32 {
         let uu = mul_hi32(self.u, o.u);
-        (mul_i32_u32(dot, uu) >> 26) as i32
+        mul_i32_u32_shr26(dot, uu)
     }
 
     /// [`Dir::cos`] with `+Z` ([`Dir::Z`], `u = 2³⁰`): `d_z·u/2¹⁴`, one

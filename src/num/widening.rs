@@ -57,6 +57,38 @@ pub(crate) fn mul_i32_u32_shr31(a: i32, b: u32) -> i32 {
     }
 }
 
+/// `⌊a·b / 2²⁶⌋` as `i32` (wrapped where it does not fit), for `|a| ≤
+/// 3·2²⁸` and `b ≤ 2³⁰`: a cosine from a dot product and two reciprocal
+/// lengths (`Dir::cos_of_dot`).
+#[inline(always)]
+pub(crate) fn mul_i32_u32_shr26(a: i32, b: u32) -> i32 {
+    debug_assert!(a.unsigned_abs() <= 3 << 28 && b <= 1 << 30);
+    if platform::SOFT_MUL64 {
+        mul_i32_u32_shr26_limbs(a, b)
+    } else {
+        ((a as i64 * b as i64) >> 26) as i32
+    }
+}
+
+/// [`mul_i32_u32_shr26`] from four 16 × 16-bit products: with `a = aₕ·2¹⁶
+/// + aₗ` (`|aₕ| ≤ 3·2¹²`, `0 ≤ aₗ < 2¹⁶`) and `b` likewise (`bₕ ≤ 2¹⁴`),
+/// `a·b = aₕbₕ·2³² + m·2¹⁶ + l` with `m = aₕbₗ + aₗbₕ` (below `3·2²⁸ +
+/// 2³⁰ < 2³¹` in magnitude) and `l = aₗbₗ < 2³²`; so `⌊a·b/2²⁶⌋ = aₕbₕ·2⁶
+/// + ⌊m/2¹⁰⌋ + ⌊(m mod 2¹⁰ + ⌊l/2¹⁶⌋)/2¹⁰⌋` (the fraction `l`'s low half
+/// leaves out cannot carry past a multiple of 2¹⁰), summed modulo 2³².
+#[inline(always)]
+pub(crate) fn mul_i32_u32_shr26_limbs(a: i32, b: u32) -> i32 {
+    let (ah, al) = (a >> 16, (a & 0xFFFF) as u32);
+    let (bh, bl) = ((b >> 16) as i32, b & 0xFFFF);
+    let m = ah * bl as i32 + (al * bh as u32) as i32;
+    let l = al * bl;
+    let low = (((m & 0x3FF) as u32 + (l >> 16)) >> 10) as i32;
+    (ah * bh)
+        .wrapping_mul(64)
+        .wrapping_add(m >> 10)
+        .wrapping_add(low)
+}
+
 /// [`mul_i32_u32_shr31`] from four 16 × 16-bit products. With `a =
 /// aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 2¹⁵`, `0 ≤ aₗ < 2¹⁶`) and `b` likewise
 /// (unsigned), `x₁ = aₕbₗ` (`|x₁| < 2³¹`), `x₂ = aₗbₕ` and `x₃ = aₗbₗ`
@@ -372,6 +404,50 @@ mod tests {
 
     /// The squares' sum and the 12-bit product take the same values in
     /// both forms, over their operands' ranges and at their ends.
+    /// `mul_i32_u32_shr26`'s halves are the 64-bit product's floor, over
+    /// its domain's ends and random values of every magnitude.
+    #[test]
+    fn shr26_halves_are_the_floor() {
+        use super::mul_i32_u32_shr26_limbs;
+        let a_max = 3i64 << 28;
+        let ends = [
+            0i64,
+            1,
+            -1,
+            a_max,
+            -a_max,
+            a_max - 1,
+            -a_max + 1,
+            1 << 16,
+            -(1 << 16),
+        ];
+        let mut next = crate::tests::xorshift(0x26_26_2626_dead_beef);
+        for i in 0..300_000u64 {
+            let a = if i < 81 {
+                ends[(i % 9) as usize]
+            } else {
+                (next() as i64 >> (34 + i % 30)).clamp(-a_max, a_max)
+            };
+            let b = if i < 81 {
+                [
+                    0u64,
+                    1,
+                    1 << 30,
+                    (1 << 30) - 1,
+                    1 << 16,
+                    0xFFFF,
+                    12345,
+                    1 << 29,
+                    3 << 28,
+                ][(i / 9) as usize]
+            } else {
+                (next() >> (34 + i % 30)).min(1 << 30)
+            };
+            let want = ((a * b as i64) >> 26) as i32;
+            assert_eq!(mul_i32_u32_shr26_limbs(a as i32, b as u32), want, "{a} {b}");
+        }
+    }
+
     /// `saturate_i32` is the clamp to `i32`'s range, at its ends and at
     /// random values of every magnitude.
     #[test]
