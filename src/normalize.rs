@@ -107,6 +107,25 @@ const B_TOP: u32 = 19;
 /// Cost: two table reads and six 32 × 32 → 32-bit multiplies.
 #[inline]
 pub(crate) fn rsqrt_q(x: u32) -> u32 {
+    let (y0, e) = rsqrt_seed(x);
+    // Newton: y1 = y0 + y0·e/2. (e >> 6) is Q.24 with |·| ≤ 2^14, y0 < 2^16,
+    // so the product is below 2^30 in magnitude; Q.39 → Q.30 and /2 is >> 10.
+    let corr = (y0 as i32 * (e >> 6)) >> 10; // |corr| ≤ 2^20
+                                             // y0 << 15 ∈ [2^30, 2^31 − 2^18]; adding |corr| ≤ 2^20 stays in (0, 2^32).
+    let y1 = (y0 << 15).wrapping_add_signed(corr);
+    // 1/√X ≤ 2 and Newton from any start undershoots: y1 ≤ 2³¹ for every
+    // input (`rsqrt_q_exhaustive` holds it over all of them; 137 units
+    // below at x = 2³⁰, the largest).
+    debug_assert!(y1 <= 1 << 31);
+    y1
+}
+
+/// [`rsqrt_q`]'s seed `y0 ≈ 1/√X` (`Q1.15`, from the table) and its
+/// residual `e = 1 − X·y0²` (`Q.30`), `x` taken into `[2³⁰, 2³²)` first.
+/// `|e| < 2¹⁸·⁷` for every input (`rsqrt_q_exhaustive` holds `|e| ≤ 2²⁰`,
+/// the bound the Newton step's ranges take, over all of them).
+#[inline(always)]
+pub(crate) fn rsqrt_seed(x: u32) -> (u32, i32) {
     let x = if x < 1 << 30 { 1 << 30 } else { x };
     // x ∈ [2^30, 2^32): top 6 bits ∈ [16, 64), so i ∈ [0, 48) and i + 1 ≤ 48.
     let i = ((x >> 26) - 16) as usize;
@@ -121,20 +140,9 @@ pub(crate) fn rsqrt_q(x: u32) -> u32 {
     // X·y0² in Q2.30 (Q0.32 × Q2.30 → Q2.62, high word, to within 1); ≈ 2^30·(1 ± 2^-11.3),
     // so < 2^31 and the difference below fits i32.
     let p = mul_hi32(x, sq);
-    // Residual 1 − X·y0², Q.30. Measured |e| < 2^18.7; the clamp never acts,
-    // it only makes the bound below unconditional. (A 21-bit signed range,
-    // which ARMv7-M clamps in one instruction, `SSAT`.)
-    let e = ((1i32 << 30) - p as i32).clamp(-(1 << 20), (1 << 20) - 1);
-    // Newton: y1 = y0 + y0·e/2. (e >> 6) is Q.24 with |·| ≤ 2^14, y0 < 2^16,
-    // so the product is below 2^30 in magnitude; Q.39 → Q.30 and /2 is >> 10.
-    let corr = (y0 as i32 * (e >> 6)) >> 10; // |corr| ≤ 2^20
-                                             // y0 << 15 ∈ [2^30, 2^31 − 2^18]; adding |corr| ≤ 2^20 stays in (0, 2^32).
-    let y1 = (y0 << 15).wrapping_add_signed(corr);
-    // 1/√X ≤ 2 and Newton from any start undershoots: y1 ≤ 2³¹ for every
-    // input (`rsqrt_q_exhaustive` holds it over all of them; 137 units
-    // below at x = 2³⁰, the largest).
-    debug_assert!(y1 <= 1 << 31);
-    y1
+    let e = (1i32 << 30) - p as i32;
+    debug_assert!(e.unsigned_abs() <= 1 << 20);
+    (y0, e)
 }
 
 /// The unit vector of `b` (magnitudes, largest in `[2¹⁹, 2²⁰]`), with the

@@ -1,7 +1,7 @@
 //! Accuracy and robustness of `crate::normalize` against an f64 (and, for
 //! lengths, an exact 128-bit integer) reference.
 
-use crate::normalize::{normalize, normalize_len, one_minus_cos, rsqrt_q};
+use crate::normalize::{normalize, normalize_len, one_minus_cos, rsqrt_q, rsqrt_seed};
 use crate::Unit3;
 use proptest::prelude::*;
 
@@ -396,8 +396,10 @@ fn rsqrt_q_exhaustive() {
     };
     let mut worst = 0f64;
     for x in ((1u32 << 30)..=u32::MAX).step_by(stride) {
-        // Within (2³⁰, 2³¹] with no cap: Newton's step undershoots.
+        // Within (2³⁰, 2³¹] with no cap: Newton's step undershoots; the
+        // seed's residual within the ±2²⁰ its step's ranges take.
         assert!(rsqrt_q(x) <= 1 << 31, "{x}");
+        assert!(rsqrt_seed(x).1.unsigned_abs() <= 1 << 20, "{x}");
         let y = rsqrt_q(x) as f64 / (1u64 << 30) as f64;
         let exact = 1.0 / (x as f64 / 4294967296.0).sqrt();
         worst = worst.max((y / exact - 1.0).abs());
