@@ -236,7 +236,9 @@ impl<S: Specular, V: Viewer, L: LightSet> Lighting<S, V, L> {
                 None
             } else if V::LOCAL {
                 // −P; saturating, as `view_dir`'s.
-                Dir::reduce(p.map(i32::saturating_neg)).map(|(v, _)| Dir::new(v))
+                // (`max` then a wrapping negation: the saturating one, in
+                // fewer instructions on ARMv6-M.)
+                Dir::reduce(p.map(|c| c.max(-i32::MAX).wrapping_neg())).map(|(v, _)| Dir::new(v))
             } else {
                 Some(Dir::Z)
             };

@@ -316,21 +316,24 @@ fn add_term<S: Specular>(
     // sf ≤ 2^15 (documented clamp; every light of the crate already gives
     // at most 2^15, so this changes nothing for them).
     let sf = sf.min(FACTOR_ONE);
-    // nl15·sf ≤ 2^30: diff ≤ 2^15, and so is spec below (sp ≤ 2^15, the
-    // range of pow_from_delta), as Gain::apply_in_range needs.
-    let diff = (nl15 * sf + (1 << 14)) >> 15;
-    for (a, gd) in acc.iter_mut().zip(g.diffuse.iter()) {
-        *a = a.saturating_add(gd.apply_in_range(diff));
-    }
-    if S::ENABLED {
-        let Some(delta) = delta() else {
-            return;
-        };
-        let sp = pow_from_delta(delta, shininess) as u32;
-        let spec = (sp * sf + (1 << 14)) >> 15;
-        for (a, gs) in acc.iter_mut().zip(g.specular.iter()) {
-            *a = a.saturating_add(gs.apply_in_range(spec));
+    // The specular term first: the power's call leaves nothing of the
+    // diffuse one to keep across it. sp ≤ 2^15 (pow_from_delta's range),
+    // so spec ≤ 2^15, and so is diff below (nl15·sf ≤ 2^30), as
+    // Gain::apply_in_range needs.
+    let s = match S::ENABLED.then(delta).flatten() {
+        Some(delta) => {
+            let sp = pow_from_delta(delta, shininess) as u32;
+            let spec = (sp * sf + (1 << 14)) >> 15;
+            g.specular.map(|gs| gs.apply_in_range(spec))
         }
+        None => [0; 3],
+    };
+    let diff = (nl15 * sf + (1 << 14)) >> 15;
+    // Each term at most 2²⁴ (a gain at most 256 times a factor at most
+    // 1, in Q.16): a channel's two sum without overflow, and one
+    // saturating add gives what two would (the addends are not negative).
+    for c in 0..3 {
+        acc[c] = acc[c].saturating_add(g.diffuse[c].apply_in_range(diff) + s[c]);
     }
 }
 
