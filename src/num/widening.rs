@@ -70,12 +70,13 @@ pub(crate) fn mul_i32_u32_shr26(a: i32, b: u32) -> i32 {
     }
 }
 
-/// [`mul_i32_u32_shr26`] from four 16 × 16-bit products: with `a = aₕ·2¹⁶
-/// + aₗ` (`|aₕ| ≤ 3·2¹²`, `0 ≤ aₗ < 2¹⁶`) and `b` likewise (`bₕ ≤ 2¹⁴`),
-/// `a·b = aₕbₕ·2³² + m·2¹⁶ + l` with `m = aₕbₗ + aₗbₕ` (below `3·2²⁸ +
-/// 2³⁰ < 2³¹` in magnitude) and `l = aₗbₗ < 2³²`; so `⌊a·b/2²⁶⌋ = aₕbₕ·2⁶
-/// + ⌊m/2¹⁰⌋ + ⌊(m mod 2¹⁰ + ⌊l/2¹⁶⌋)/2¹⁰⌋` (the fraction `l`'s low half
-/// leaves out cannot carry past a multiple of 2¹⁰), summed modulo 2³².
+/// [`mul_i32_u32_shr26`] from four 16 × 16-bit products. With `a =
+/// aₕ·2¹⁶ + aₗ` (`|aₕ| ≤ 3·2¹²`, `0 ≤ aₗ < 2¹⁶`) and `b` likewise (`bₕ ≤
+/// 2¹⁴`), `a·b = aₕbₕ·2³² + m·2¹⁶ + l` with `m = aₕbₗ + aₗbₕ` (below
+/// `3·2²⁸ + 2³⁰ < 2³¹` in magnitude) and `l = aₗbₗ < 2³²`; so the floor by
+/// 2²⁶ is `aₕbₕ·2⁶ + ⌊m/2¹⁰⌋ + ⌊(m mod 2¹⁰ + ⌊l/2¹⁶⌋)/2¹⁰⌋` (the fraction
+/// that `l`'s low half leaves out cannot carry past a multiple of 2¹⁰),
+/// summed modulo 2³².
 #[inline(always)]
 pub(crate) fn mul_i32_u32_shr26_limbs(a: i32, b: u32) -> i32 {
     let (ah, al) = (a >> 16, (a & 0xFFFF) as u32);
@@ -421,7 +422,7 @@ mod tests {
             1 << 16,
             -(1 << 16),
         ];
-        let mut next = crate::tests::xorshift(0x26_26_2626_dead_beef);
+        let mut next = crate::tests::xorshift(0x2626_2626_dead_beef);
         for i in 0..300_000u64 {
             let a = if i < 81 {
                 ends[(i % 9) as usize]
