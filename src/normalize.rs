@@ -110,8 +110,9 @@ pub(crate) fn rsqrt_q(x: u32) -> u32 {
     let (y0, e) = rsqrt_seed(x);
     // Newton: y1 = y0 + y0·e/2. (e >> 6) is Q.24 with |·| ≤ 2^14, y0 < 2^16,
     // so the product is below 2^30 in magnitude; Q.39 → Q.30 and /2 is >> 10.
-    let corr = (y0 as i32 * (e >> 6)) >> 10; // |corr| ≤ 2^20
-                                             // y0 << 15 ∈ [2^30, 2^31 − 2^18]; adding |corr| ≤ 2^20 stays in (0, 2^32).
+    // |corr| ≤ 2^20; y0 << 15 ∈ [2^30, 2^31 − 2^18], so adding it stays in
+    // (0, 2^32).
+    let corr = (y0 as i32 * (e >> 6)) >> 10;
     let y1 = (y0 << 15).wrapping_add_signed(corr);
     // 1/√X ≤ 2 and Newton from any start undershoots: y1 ≤ 2³¹ for every
     // input (`rsqrt_q_exhaustive` holds it over all of them; 137 units

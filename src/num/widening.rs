@@ -59,7 +59,10 @@ pub(crate) fn mul_i32_u32_shr31(a: i32, b: u32) -> i32 {
 
 /// `⌊a·b / 2²⁶⌋` as `i32` (wrapped where it does not fit), for `|a| ≤
 /// 3·2²⁸` and `b ≤ 2³⁰`: a cosine from a dot product and two reciprocal
-/// lengths (`Dir::cos_of_dot`).
+/// lengths (`Dir::cos_of_dot`). Its own decomposition beside
+/// [`mul_i32_u32_shr31`]'s: these operands keep the two middle products'
+/// sum within `i32`, which the full range does not (the shared form
+/// measured M0+ S4 +1.25 %).
 #[inline(always)]
 pub(crate) fn mul_i32_u32_shr26(a: i32, b: u32) -> i32 {
     debug_assert!(a.unsigned_abs() <= 3 << 28 && b <= 1 << 30);
