@@ -17,7 +17,9 @@
 #     them with arm-none-eabi-size, runs them for the stack high-water
 #     mark and the instruction count; the `s1` configuration (standard
 #     scene S1 and nothing more) must print the checksum of the host's S1
-#     frame (exit 1 if not); builds each again through the explicit call;
+#     frame (exit 1 if not), and so must `s1_noclip`, the same built
+#     without the kernel's `clip` feature (as `ambient_noclip` is the
+#     ambient one); builds each again through the explicit call;
 #     the report fails (exit 1, after writing it) where a build drawn by
 #     the draw call is more than 1 % from its explicit-call build in .text
 #     or a draw's instructions; every difference, a function's size too,
@@ -153,9 +155,13 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
     # core) run side by side.
     configs() {
         local t=$1 level feat elf d e want
-        for level in none ambient lambert specular point spot depth phong s1; do
-            feat=()
-            [ $level = none ] || feat=(--features $level)
+        for level in none ambient lambert specular point spot depth phong s1 s1_noclip ambient_noclip; do
+            case $level in
+                none) feat=() ;;
+                # Without the kernel's rare path (its `clip` feature).
+                *_noclip) feat=(--no-default-features --features "${level%_noclip}") ;;
+                *) feat=(--features $level) ;;
+            esac
             (cd firmware/qemu && CARGO_TARGET_DIR=$TGT/qemu-$t cargo build --release -q --target $t --bin fixshade-config "${feat[@]}")
             elf=$TGT/qemu-$t/$t/release/fixshade-config
             d=$OUT/config/$t/$level
@@ -166,12 +172,12 @@ if [ "${FIRMWARE_QUICK:-0}" != 1 ]; then
                 run_counted "$elf" "$d"
             fi
             echo "  $level: $(cat "$d/console.log")"
-            if [ $level = s1 ]; then
+            if [ $level = s1 ] || [ $level = s1_noclip ]; then
                 want=$(host_checksum "$OUT/host/s1_gouraud.bin")
                 if grep -q "checksum=$want " "$d/console.log"; then
-                    echo "  s1: checksum of the host's s1_gouraud frame"
+                    echo "  $level: checksum of the host's s1_gouraud frame"
                 else
-                    echo "  s1: checksum DIFFERS from the host's s1_gouraud frame ($want)"
+                    echo "  $level: checksum DIFFERS from the host's s1_gouraud frame ($want)"
                     exit 1
                 fi
             fi

@@ -58,6 +58,16 @@
 //! (coordinate systems, the illumination equation, rounding) are the
 //! project's SPEC.md, shipped in the package's `docs/`.
 //!
+//! # Features
+//! - `clip` (default): the rare path, which clips triangles against the
+//!   near plane and the guard band (about ±1000 pixels around the target):
+//!   about 7 KB of flash on a Cortex-M0+. Without it (`default-features =
+//!   false`) a draw whose mesh may need clipping (its box, placed by the
+//!   model-view, reaches behind the near plane or past the guard band:
+//!   decided once a draw) is refused with
+//!   [`RenderError::NeedsClipping`](render::RenderError::NeedsClipping)
+//!   before any pixel is written; every other draw gives the same frame.
+//!
 //! # Public items
 //!
 //! Every public item, by module (the crate root re-exports the most used;

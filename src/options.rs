@@ -214,6 +214,13 @@ pub enum RenderError<E> {
     /// its entries' precision, or scales one direction more than about
     /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another.
     DegenerateModel,
+    /// The mesh, placed by the model-view, may reach behind the near plane
+    /// or past the guard band (its box's corners decide, once a draw), and
+    /// the crate was built without its `clip` feature, which clips such
+    /// triangles: nothing was drawn. Build with the feature (a default
+    /// one), or keep the mesh in front of the near plane and within about
+    /// a thousand pixels of the target.
+    NeedsClipping,
     /// The target reported an error.
     Target(E),
 }
@@ -232,6 +239,7 @@ impl<E> RenderError<E> {
             RenderError::TargetTooLarge => RenderError::TargetTooLarge,
             RenderError::SceneTooSmall => RenderError::SceneTooSmall,
             RenderError::DegenerateModel => RenderError::DegenerateModel,
+            RenderError::NeedsClipping => RenderError::NeedsClipping,
             RenderError::Target(e) => return Err(e),
         })
     }
@@ -272,6 +280,9 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
             RenderError::DegenerateModel => {
                 f.write_str("model matrix singular or scaling one axis over 2^11 times another")
             }
+            RenderError::NeedsClipping => f.write_str(
+                "mesh reaches behind the near plane or past the guard band, and the crate was built without its clip feature",
+            ),
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }
     }

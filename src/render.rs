@@ -120,8 +120,12 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         let normal_m =
             Stage::<S, V, L>::normal_matrix(&self.modelview).ok_or(RenderError::DegenerateModel)?;
         let (origin, rect) = rect_of((w, h));
+        let stage = Stage::new(&self.lighting, mesh, &self.modelview, normal_m, &proj, w, h);
+        if !platform::CLIP && !stage.rows.contained() {
+            return Err(RenderError::NeedsClipping);
+        }
         Ok(Some(Frame {
-            stage: Stage::new(&self.lighting, mesh, &self.modelview, normal_m, &proj, w, h),
+            stage,
             options: self.options,
             size: (w, h),
             origin,

@@ -73,7 +73,11 @@ impl<S: Specular, V: Viewer, L: LightSet> Frame<'_, '_, S, V, L> {
         debug_assert!(slot.iter().all(|&k| k < cache.len()));
         // SAFETY: the caller's contract.
         let [v0, v1, v2] = slot.map(|k| unsafe { cache.get_unchecked(k) });
-        if v0.rare_bits() | v1.rare_bits() | v2.rare_bits() != 0 {
+        let rare = v0.rare_bits() | v1.rare_bits() | v2.rare_bits();
+        // Without the rare path only contained draws get here
+        // (`Prepared::frame`), whose every vertex the lean path keeps.
+        debug_assert!(platform::CLIP || rare == 0);
+        if platform::CLIP && rare != 0 {
             let c = &mut Corners {
                 cache,
                 slot,

@@ -300,7 +300,9 @@ impl Rows {
     /// [`Rows::window`] from the fast rows' [`Rows::fourteen`] `v`.
     #[inline(always)]
     fn window_of(&self, v: [i32; 4]) -> Window {
-        if self.contained {
+        // Without the rare path every draw is contained
+        // (`Prepared::frame` refuses the others).
+        if self.contained || !platform::CLIP {
             Some(Self::divided(v))
         } else {
             Self::tested(v)

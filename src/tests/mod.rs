@@ -1,6 +1,7 @@
 //! Unit tests of the kernel's internal modules that span a whole module:
 //! properties and accuracy sweeps (the smaller tests sit beside their code).
 
+mod clip_feature;
 mod coverage;
 mod dir;
 mod normalize;

@@ -34,7 +34,7 @@ const TARGETS: [(&str, &str); 2] = [
 /// The configurations of the flash/RAM table: level (firmware/qemu
 /// feature), what it renders, and the level its Δ columns are taken
 /// against.
-const LEVELS: [(&str, &str, Option<&str>); 9] = [
+const LEVELS: [(&str, &str, Option<&str>); 11] = [
     ("none", "runtime only (no render call)", None),
     (
         "ambient",
@@ -59,6 +59,16 @@ const LEVELS: [(&str, &str, Option<&str>); 9] = [
         "s1",
         "**S1 as drawn**: one `DirectionalLight`, `BlinnPhong`, Gouraud, `DepthBuffer`, culling (Δ against \"+ directional specular\")",
         Some("specular"),
+    ),
+    (
+        "s1_noclip",
+        "**S1 as drawn, without the kernel's `clip` feature** (no near or guard-band clipping: a draw that would need it is refused; Δ against S1 as drawn)",
+        Some("s1"),
+    ),
+    (
+        "ambient_noclip",
+        "ambient only, without the kernel's `clip` feature (Δ against ambient only)",
+        Some("ambient"),
     ),
 ];
 

@@ -310,8 +310,22 @@ pub(super) fn target_table(
             true,
         ),
         Target(
+            ".text, S1's configuration without the kernel's `clip` feature, M0+ (runtime included)",
+            config("s1_noclip")?,
+            32.0 * 1024.0,
+            Some(16.0 * 1024.0),
+            true,
+        ),
+        Target(
             ".text, ambient-only configuration, M0+",
             config("ambient")?,
+            20.0 * 1024.0,
+            None,
+            true,
+        ),
+        Target(
+            ".text, ambient-only configuration without `clip`, M0+",
+            config("ambient_noclip")?,
             20.0 * 1024.0,
             None,
             true,
