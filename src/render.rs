@@ -120,17 +120,17 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
         let normal_m =
             Stage::<S, V, L>::normal_matrix(&self.modelview).ok_or(RenderError::DegenerateModel)?;
         let (origin, rect) = rect_of((w, h));
-        let stage = Stage::new(&self.lighting, mesh, &self.modelview, normal_m, &proj, w, h);
-        if !platform::CLIP && !stage.rows.contained() {
-            return Err(RenderError::NeedsClipping);
-        }
-        Ok(Some(Frame {
-            stage,
+        let frame = Frame {
+            stage: Stage::new(&self.lighting, mesh, &self.modelview, normal_m, &proj, w, h),
             options: self.options,
             size: (w, h),
             origin,
             rect,
-        }))
+        };
+        if !platform::CLIP && !frame.stage.rows.contained() {
+            return Err(RenderError::NeedsClipping);
+        }
+        Ok(Some(frame))
     }
 
     /// Draws `mesh` into the target `T` through `DrawTarget` (one
