@@ -98,6 +98,13 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
     /// The frame of `mesh` on a target of `size` (at most
     /// [`MAX_TARGET_SIDE`] a side), all its rows drawn; `None` for an
     /// empty target.
+    ///
+    /// Inlined into its callers (one a draw path): the frame, 328 bytes on
+    /// a 32-bit core, is then made where the caller keeps it rather than
+    /// copied out of the result, and the ambient-only configuration
+    /// without `clip` measured 856 bytes smaller on the M0+ (1.0 KB on
+    /// the M4F).
+    #[inline(always)]
     pub(crate) fn frame<'a, 'm, E>(
         &'a self,
         mesh: &'a Mesh<'m>,
