@@ -60,12 +60,12 @@
 //!
 //! # Features
 //! - `clip` (default): the rare path, which clips triangles against the
-//!   near plane and the guard band (about ±1000 pixels around the target):
-//!   about 7 KB of flash on a Cortex-M0+. Without it (`default-features =
-//!   false`) a draw whose mesh may need clipping (its box, placed by the
-//!   model-view, reaches behind the near plane or past the guard band:
-//!   decided once a draw) is refused with
-//!   [`RenderError::NeedsClipping`](render::RenderError::NeedsClipping)
+//!   near plane and the guard band (1 023 pixels each way from the
+//!   target's centre): 8.5 KB of flash in S1's configuration on a
+//!   Cortex-M0+. Without it (`default-features = false`) a draw whose mesh
+//!   may need clipping (its box, placed by the model-view, reaches behind
+//!   the near plane or past the guard band: decided once a draw) is refused
+//!   with [`RenderError::NeedsClipping`](render::RenderError::NeedsClipping)
 //!   before any pixel is written; every other draw gives the same frame.
 //!
 //! # Public items

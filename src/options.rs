@@ -214,12 +214,17 @@ pub enum RenderError<E> {
     /// its entries' precision, or scales one direction more than about
     /// [`MAX_ANISOTROPY`](crate::vector::MAX_ANISOTROPY) times another.
     DegenerateModel,
-    /// The mesh, placed by the model-view, may reach behind the near plane
-    /// or past the guard band (its box's corners decide, once a draw), and
-    /// the crate was built without its `clip` feature, which clips such
-    /// triangles: nothing was drawn. Build with the feature (a default
-    /// one), or keep the mesh in front of the near plane and within about
-    /// a thousand pixels of the target.
+    /// The mesh may need clipping, and the crate was built without its
+    /// `clip` feature: nothing was drawn. Without the feature a draw goes
+    /// ahead only where the mesh's box (its [`Bounds`](crate::mesh::Bounds)
+    /// placed by the model-view: a loose box is refused sooner) lies wholly
+    /// in front of the near plane, not far past the far plane, inside the
+    /// guard band (1 023 pixels each way from the target's centre, so a
+    /// target over 2 044 pixels a side has pixels past it) and not so near
+    /// the eye that the vertex stage's 32-bit form loses precision. A box
+    /// wholly behind the near plane or past one side of the band draws
+    /// nothing, without this error. Build with the feature (a default one)
+    /// to draw the rest.
     NeedsClipping,
     /// The target reported an error.
     Target(E),
@@ -281,7 +286,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 f.write_str("model matrix singular or scaling one axis over 2^11 times another")
             }
             RenderError::NeedsClipping => f.write_str(
-                "mesh reaches behind the near plane or past the guard band, and the crate was built without its clip feature",
+                "mesh may need clipping (near plane, guard band), and the crate was built without its clip feature",
             ),
             RenderError::Target(e) => write!(f, "target: {e:?}"),
         }

@@ -97,7 +97,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
 
     /// The frame of `mesh` on a target of `size` (at most
     /// [`MAX_TARGET_SIDE`] a side), all its rows drawn; `None` for an
-    /// empty target.
+    /// empty target or a mesh of which nothing is drawn (`Rows::outside`).
     ///
     /// Inlined into its callers (one a draw path): the frame, 328 bytes on
     /// a 32-bit core, is then made where the caller keeps it rather than
@@ -134,6 +134,9 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             origin,
             rect,
         };
+        if frame.stage.rows.outside() {
+            return Ok(None);
+        }
         if !platform::CLIP && !frame.stage.rows.contained() {
             return Err(RenderError::NeedsClipping);
         }
@@ -235,7 +238,7 @@ impl<'c, S: Specular, V: Viewer, L: LightSet> Prepared<'c, S, V, L> {
             // Where the scan is assembly (`None` elsewhere: the loop below).
             // Whether an entry may have the rare path's flag: not in a
             // contained draw, whose every vertex the lean path keeps.
-            let rare = !frame.stage.rows.contained();
+            let rare = platform::CLIP && !frame.stage.rows.contained();
             debug_assert!(rare || cache.iter().all(|v| v.rare_bits() == 0));
             if platform::GOURAUD_RUN && M::KIND == ShadingKind::Gouraud && !frame.options.dither {
                 // SAFETY: the mesh is validated, its indices below the

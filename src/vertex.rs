@@ -160,6 +160,10 @@ pub(crate) struct Rows {
     /// plane, inside the guard band, before `z_w = 2` and far enough from
     /// the eye: no vertex is tested.
     contained: bool,
+    /// Fast, and every point of the mesh's box behind the near plane or
+    /// past one side of the guard band, which holds the whole target:
+    /// nothing of the mesh is drawn.
+    outside: bool,
 }
 
 /// A vertex's window position (1/16 pixel from the set-up's origin) and
@@ -223,12 +227,24 @@ impl Rows {
             r: [Row::ZERO; 4],
             fast,
             contained: false,
+            outside: false,
         };
         for (k, row) in out.r.iter_mut().enumerate() {
             *row = Row::at(&rows[k], e[k]);
             platform::keep_loop_rolled();
         }
-        out.contained = fast && Rows::corners().all(|q| out.lean(out.exact(q)));
+        if fast {
+            let mut v = [[0; 4]; 8];
+            for (c, q) in v.iter_mut().zip(Rows::corners()) {
+                *c = out.exact(q);
+                platform::keep_loop_rolled();
+            }
+            out.contained = v.iter().all(|c| out.lean(*c));
+            // The guard band holds a target of at most 2 044 pixels a
+            // side (its last pixel's far edge 1 022 pixels from the
+            // origin); a larger one's pixels past it are drawn too.
+            out.outside = outside(&v, w.max(h) <= 2044);
+        }
         out
     }
 
@@ -297,11 +313,20 @@ impl Rows {
         self.contained
     }
 
+    /// Whether nothing of the mesh can be drawn: its box lies wholly behind
+    /// the near plane or past one side of the guard band (the target inside
+    /// it).
+    #[inline(always)]
+    pub(crate) fn outside(&self) -> bool {
+        self.outside
+    }
+
     /// [`Rows::window`] from the fast rows' [`Rows::fourteen`] `v`.
     #[inline(always)]
     fn window_of(&self, v: [i32; 4]) -> Window {
         // Without the rare path every draw is contained
         // (`Prepared::frame` refuses the others).
+        debug_assert!(self.contained || platform::CLIP);
         if self.contained || !platform::CLIP {
             Some(Self::divided(v))
         } else {
@@ -401,6 +426,24 @@ impl Rows {
         let inside = |a: i64| a.abs() <= limit;
         (inside(x) && inside(y) && z.abs() <= 1 << 30).then_some([x as i32, y as i32, z as i32])
     }
+}
+
+/// Whether the fast rows' exact values `v` at the box's eight corners all
+/// lie past one plane that bounds what is drawn: behind the near plane (`Z <
+/// 0`), or, where `sides` (the guard band holds the target), past one side
+/// of the band ([`Rows::lean`]'s bound). A half-space of these homogeneous
+/// rows holds the points behind the eye that project into it too, so no
+/// point of the box, nor any triangle of the mesh, is drawn. Ranges as in
+/// [`Rows::lean`].
+fn outside(v: &[[i64; 4]; 8], sides: bool) -> bool {
+    let g = (GUARD - 1) as i64;
+    let all = |f: fn(&[i64; 4], i64) -> bool| v.iter().all(|c| f(c, g));
+    all(|c, _| c[2] < 0)
+        || sides
+            && (all(|c, g| c[0] << XY_SHIFT > g * c[3])
+                || all(|c, g| (-c[0]) << XY_SHIFT > g * c[3])
+                || all(|c, g| c[1] << XY_SHIFT > g * c[3])
+                || all(|c, g| (-c[1]) << XY_SHIFT > g * c[3]))
 }
 
 /// Whether the estimate `p = Q·2¹⁶` (its floor) may lie on the other side
