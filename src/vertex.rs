@@ -234,16 +234,19 @@ impl Rows {
             platform::keep_loop_rolled();
         }
         if fast {
-            let mut v = [[0; 4]; 8];
-            for (c, q) in v.iter_mut().zip(Rows::corners()) {
-                *c = out.exact(q);
+            // What every corner says: each takes the lean path ([`LEAN`]),
+            // or each lies past one plane bounding what is drawn.
+            let mut all = u32::MAX;
+            for q in Rows::corners() {
+                all &= corner(out.exact(q));
                 platform::keep_loop_rolled();
             }
-            out.contained = v.iter().all(|c| out.lean(*c));
             // The guard band holds a target of at most 2 044 pixels a
             // side (its last pixel's far edge 1 022 pixels from the
             // origin); a larger one's pixels past it are drawn too.
-            out.outside = outside(&v, w.max(h) <= 2044);
+            let sides = if w.max(h) <= 2044 { 0x1E } else { 0 };
+            out.contained = all & LEAN != 0;
+            out.outside = all & (1 | sides) != 0;
         }
         out
     }
@@ -251,17 +254,6 @@ impl Rows {
     /// The eight corners of the mesh's box.
     fn corners() -> impl Iterator<Item = [i16; 3]> {
         (0..8).map(|k| [0, 1, 2].map(|c| if k >> c & 1 == 0 { i16::MIN } else { i16::MAX }))
-    }
-
-    /// Whether the fast rows' exact values `v` are in front of the near
-    /// plane (depth attribute above 2⁷), before `z_w = 2`, inside the
-    /// guard band with half a sixteenth to spare, and `W ≥ 2³⁶` (for
-    /// [`Rows::contained`]). Each test is linear in the position, so the
-    /// box's corners decide for the box. `|X|·2¹⁶ < 2⁶²` and `G·W < 2⁶⁰`.
-    fn lean(&self, v: [i64; 4]) -> bool {
-        let [x, y, z, w] = v;
-        let band = |a: i64| a.abs() << XY_SHIFT <= (GUARD - 1) as i64 * w;
-        w >= 1 << 36 && z > (w + (1 << 18) - 1) >> 18 && z < w && band(x) && band(y)
     }
 
     /// `⌊V/2¹⁴⌋` of the four rows at position `q`, a row a pass of a loop
@@ -428,22 +420,31 @@ impl Rows {
     }
 }
 
-/// Whether the fast rows' exact values `v` at the box's eight corners all
-/// lie past one plane that bounds what is drawn: behind the near plane (`Z <
-/// 0`), or, where `sides` (the guard band holds the target), past one side
-/// of the band ([`Rows::lean`]'s bound). A half-space of these homogeneous
-/// rows holds the points behind the eye that project into it too, so no
-/// point of the box, nor any triangle of the mesh, is drawn. Ranges as in
-/// [`Rows::lean`].
-fn outside(v: &[[i64; 4]; 8], sides: bool) -> bool {
-    let g = (GUARD - 1) as i64;
-    let all = |f: fn(&[i64; 4], i64) -> bool| v.iter().all(|c| f(c, g));
-    all(|c, _| c[2] < 0)
-        || sides
-            && (all(|c, g| c[0] << XY_SHIFT > g * c[3])
-                || all(|c, g| (-c[0]) << XY_SHIFT > g * c[3])
-                || all(|c, g| c[1] << XY_SHIFT > g * c[3])
-                || all(|c, g| (-c[1]) << XY_SHIFT > g * c[3]))
+/// [`corner`]'s flag of a corner that takes the lean path.
+const LEAN: u32 = 1 << 5;
+
+/// What the fast rows' exact values `v` at a corner of the mesh's box say
+/// of it: [`LEAN`] where it is in front of the near plane (depth attribute
+/// above 2⁷), before `z_w = 2`, inside the guard band with half a sixteenth
+/// to spare and `W ≥ 2³⁶` (for [`Rows::contained`]); bit 0 where it lies
+/// behind the near plane (`Z < 0`: the depth attribute below 0), bits 1 to
+/// 4 where it lies past the band's right, left, lower or upper side (for
+/// [`Rows::outside`]). Each test is linear in the position, so the box's
+/// corners decide for the box: a half-space of these homogeneous rows
+/// holds the points behind the eye that project into it too, so a box
+/// whose corners all lie past one plane has no point drawn. `|X|·2¹⁶ <
+/// 2⁶²` and `G·W < 2⁶⁰`.
+fn corner(v: [i64; 4]) -> u32 {
+    let [x, y, z, w] = v;
+    let gw = (GUARD - 1) as i64 * w;
+    let (px, py) = (x.abs() << XY_SHIFT > gw, y.abs() << XY_SHIFT > gw);
+    let lean = (w >= 1 << 36) & (z > (w + (1 << 18) - 1) >> 18) & (z < w) & !(px | py);
+    // A side's bit by the coordinate's sign (where it is 0, `W < 0`: the
+    // point lies past both sides).
+    (lean as u32) << 5
+        | (z < 0) as u32
+        | (px as u32) << (1 + (x < 0) as u32)
+        | (py as u32) << (3 + (y < 0) as u32)
 }
 
 /// Whether the estimate `p = Q·2¹⁶` (its floor) may lie on the other side
@@ -1008,5 +1009,53 @@ mod tests {
                 Some(z).map(|_| rows.window_exact(v, 0, 0, 1 << 20).unwrap()[2])
             );
         }
+    }
+
+    /// [`Rows::outside`] holds only for a box of which no point can be
+    /// drawn: over random views of a box (eyes around and inside it, fields
+    /// of view from 5° to 120°), no sampled point of a box called outside
+    /// lies in front of the near plane (depth attribute above 2⁷) and inside
+    /// the guard band; on a target too wide for the band, none lies in
+    /// front of the eye's side of `Z = 0`. Both kinds of box occur.
+    #[test]
+    fn outside_boxes_have_no_drawn_point() {
+        use crate::camera::Projection;
+        let (mut next, mut pick) = (xorshift(0x0b0c_5eed_f00d_cafe), xorshift(0x005e_ed0f_0b0c));
+        let mut f = |s: f32| ((pick() % 2001) as f32 / 1000.0 - 1.0) * s;
+        let mut seen = [0; 2];
+        for i in 0..6000 {
+            let (eye, at) = ([f(30.0), f(30.0), f(30.0)], [f(30.0), f(30.0), f(30.0)]);
+            let fovy = 5.0 + (f(1.0) + 1.0) * 57.5;
+            let Ok(cam) = Camera::look_at(eye, at, [0.0, 1.0, 0.0]) else {
+                continue;
+            };
+            let lens = Projection::Perspective { fovy_deg: fovy };
+            let Ok(cam) = cam.with_projection(lens, 0.1, 100.0) else {
+                continue;
+            };
+            let (w, h) = if i % 4 == 0 { (3000, 200) } else { (320, 240) };
+            let Ok(p) = cam.projection_for(w, h) else {
+                continue;
+            };
+            let m = crate::mesh::Bounds::cube(4.0).fold(&cam.view);
+            let rows = Rows::new(&m, &p, w, h);
+            seen[rows.outside as usize] += 1;
+            if !rows.outside {
+                continue;
+            }
+            let g = (GUARD - 1) as i64;
+            for _ in 0..300 {
+                let q = [0, 1, 2].map(|_| next() as i16);
+                let [x, y, z, wv] = rows.exact(q);
+                if w > 2044 {
+                    assert!(z < 0, "{eye:?} {at:?} {fovy}");
+                } else {
+                    let band = |a: i64| a.abs() << XY_SHIFT <= g * wv;
+                    let drawn = wv > 0 && z > wv >> 18 && band(x) && band(y);
+                    assert!(!drawn, "{eye:?} {at:?} {fovy}: {q:?}");
+                }
+            }
+        }
+        assert!(seen[0] > 1000 && seen[1] > 200, "{seen:?}");
     }
 }
