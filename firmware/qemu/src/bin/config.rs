@@ -6,6 +6,9 @@
 //! `phong` (+ per-pixel shading). `s1` is not cumulative: `specular` with
 //! the depth buffer, which is standard scene S1 exactly (scripts/firmware.sh
 //! checks its frame's checksum against the host's `s1_gouraud` frame).
+//! Each is built with the kernel's `clip` feature (this crate's default)
+//! and, for `s1` and `ambient`, once more without it
+//! (`--no-default-features`): the same frame, the rare path not linked.
 //! Built with `--cfg fixshade_explicit_draw`, each draws through the
 //! kernel's explicit call instead of the draw call (src/explicit.rs).
 //! Without a feature it renders nothing: the runtime's own size
